@@ -1,0 +1,117 @@
+"""The one module-level state of irisgl: the machine the calls drive, and the
+wrapper every call goes through (strict/lenient errors, bgn/end rule)."""
+import functools
+import math
+
+from vgx_emulator.errors import GLError, fail, is_lenient, report
+from vgx_emulator.machine import VGX
+
+machine = VGX()
+
+#: calls allowed between bgn* and end* (bgnpolygon(3G)); the rest raise there.
+_INSIDE_OK = set()
+
+
+def glcall(fn=None, *, inside=False):
+    """Wrap an IRIS GL call: in lenient mode a GLError is printed as
+    ``GL: <message>`` and the call ignored; calls not allowed inside bgn/end
+    raise there."""
+    def wrap(f):
+        name = f.__name__
+        if inside:
+            _INSIDE_OK.add(name)
+
+            @functools.wraps(f)
+            def call(*args):
+                try:
+                    return f(*args)
+                except GLError as e:
+                    if is_lenient():
+                        report(e)
+                        return None
+                    raise
+        else:
+            @functools.wraps(f)
+            def call(*args):
+                try:
+                    w = machine.current
+                    if w is not None and w.batch.open is not None:
+                        fail(name, f"not allowed inside bgn{_kind(w)}",
+                             "only v*, n*, c*, color, cpack, RGBcolor, t*, lmdef, "
+                             "lmbind, lmcolor and swaptmesh may appear there")
+                    return f(*args)
+                except GLError as e:
+                    if is_lenient():
+                        report(e)
+                        return None
+                    raise
+        call.__wrapped__ = f
+        return call
+    return wrap(fn) if fn is not None else wrap
+
+
+def _kind(w):
+    from vgx_emulator.machine import KIND_NAMES
+    return KIND_NAMES[w.batch.open[0]]
+
+
+def win(call):
+    """The current window (GLError before winopen)."""
+    w = machine.current
+    if w is None:
+        fail(call, "no window is open", "call winopen first")
+    return w
+
+
+# -- validators ------------------------------------------------------------
+def vec(call, v, n, what="array"):
+    """A C array argument of n numbers as a tuple of floats."""
+    try:
+        if len(v) != n:
+            fail(call, f"{what} has {len(v)} elements", f"it takes {n}")
+        return tuple(float(x) for x in v)
+    except TypeError:
+        fail(call, f"{what} is not a sequence of {n} numbers", f"pass {n} numbers")
+    except ValueError:
+        fail(call, f"{what} holds something that is not a number", "numbers only")
+
+
+def num(call, x, what="argument"):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        fail(call, f"{what} {x!r} is not a number", "pass a number")
+
+
+def integer(call, x, what="argument"):
+    try:
+        f = float(x)
+    except (TypeError, ValueError):
+        fail(call, f"{what} {x!r} is not an integer", "pass an integer")
+    if not math.isfinite(f) or f != int(f):
+        fail(call, f"{what} {x!r} is not an integer", "pass an integer")
+    return int(f)
+
+
+def token(call, x, allowed, what="token"):
+    """One of the named constants in ``allowed`` (a {value: name} dict)."""
+    v = integer(call, x, what)
+    if v not in allowed:
+        fail(call, f"unknown {what} {x!r}",
+             "allowed: " + ", ".join(allowed[k] for k in sorted(allowed)))
+    return v
+
+
+def boolean(call, x):
+    return bool(integer(call, x, "Boolean"))
+
+
+def ulong(x):
+    """unsigned long arguments: reduced modulo 2**32 (Decision 13)."""
+    return int(x) & 0xFFFFFFFF
+
+
+def axis(call, a):
+    if not isinstance(a, str) or a.lower() not in ("x", "y", "z"):
+        fail(call, f"axis {a!r} is not 'x', 'y' or 'z'", "pass one of 'x', 'y', 'z'")
+    return a.lower()

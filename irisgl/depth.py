@@ -1,0 +1,67 @@
+"""z-buffer calls (reference section 5; Decisions 3, 4, 13)."""
+from vgx_emulator.framebuffer import ZMAX, ZMIN
+
+from . import constants as K
+from ._current import boolean, glcall, integer, machine, token, ulong, win
+
+__all__ = ["zbuffer", "getzbuffer", "zfunction", "zwritemask", "zclear", "czclear"]
+
+_ZF = {K.ZF_NEVER: "ZF_NEVER", K.ZF_LESS: "ZF_LESS", K.ZF_EQUAL: "ZF_EQUAL",
+       K.ZF_LEQUAL: "ZF_LEQUAL", K.ZF_GREATER: "ZF_GREATER", K.ZF_NOTEQUAL: "ZF_NOTEQUAL",
+       K.ZF_GEQUAL: "ZF_GEQUAL", K.ZF_ALWAYS: "ZF_ALWAYS"}
+
+
+@glcall
+def zbuffer(b):
+    """zbuffer(3G): TRUE enables the z test and z writes (the z bank is
+    created on first use)."""
+    w = win("zbuffer")
+    v = boolean("zbuffer", b)
+    machine.state_change(w)
+    w.st.zbuffer = v
+    if v:
+        w.fb.ensure_z()
+
+
+@glcall
+def getzbuffer():
+    return int(win("getzbuffer").st.zbuffer)
+
+
+@glcall
+def zfunction(func):
+    """zfunction(3G): pass when ``incoming FUNC stored``; default ZF_LEQUAL."""
+    w = win("zfunction")
+    f = token("zfunction", func, _ZF, "z function")
+    machine.state_change(w)
+    w.st.zfunc = f
+
+
+@glcall
+def zwritemask(mask):
+    """zwritemask(3G): 1-bits of the 24-bit z are writable (per bit on VGX);
+    applies to z writes and zclear."""
+    w = win("zwritemask")
+    m = ulong(integer("zwritemask", mask, "mask")) & 0xFFFFFF
+    machine.state_change(w)
+    w.st.zwritemask = m
+
+
+@glcall
+def zclear(*ignored):
+    """zclear(3G): z := GD_ZMAX over viewport ∩ scrmask, under zwritemask.
+    One extra argument (Heidmann's listing) is accepted and ignored
+    (Decision 13)."""
+    from vgx_emulator.errors import fail
+    if len(ignored) > 1:
+        fail("zclear", f"{len(ignored)} arguments", "zclear takes none (one is tolerated)")
+    machine.zclear(win("zclear"))
+
+
+@glcall
+def czclear(cval, zval):
+    """czclear(3G): colour (packed, or an index in cmode) then z, over
+    viewport ∩ scrmask; ignores every writemask; z clamped to the z range."""
+    c = ulong(integer("czclear", cval, "colour"))
+    z = min(max(integer("czclear", zval, "z"), ZMIN), ZMAX)
+    machine.czclear(win("czclear"), c, z)

@@ -1,0 +1,48 @@
+"""Every tunable of the emulated machine, in one table.
+
+Kernels read these only through :mod:`vgx_emulator.jit` and the stage modules;
+no other module hard-codes a compiler flag or a fixed-point width.
+"""
+import os
+
+#: Fractional bits of window coordinates handed to the rasterizer (Decision 5
+#: asks for at least 4).  8 bits keep sub-pixel vertices close to their float
+#: position while edge functions stay far inside int64 (see scan/fixed.py).
+SUBPIXEL_BITS = 8
+
+#: Guard band: primitives are clipped against x/y only where they leave a
+#: window-coordinate square of this half-size (pixels) around the viewport
+#: centre.  Inside it the rasterizer's scissor does the work; the bound keeps
+#: fixed-point edge functions exact (|coord| * 2**SUBPIXEL_BITS < 2**23).
+GUARD_BAND_PIXELS = 8192
+
+#: Rows per band of the parallel triangle walker.  Each band is owned by one
+#: thread, so triangles are drawn in submission order within every pixel and
+#: the picture does not depend on the number of threads.
+BAND_ROWS = 32
+
+#: numba flags.  fastmath stays off: the NaN/inf guards and exact integer
+#: edge tests must not be compiled away (pitfalls c.3).
+JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,
+                   boundscheck=False)
+
+#: parallel kernels (prange over bands); VGX_THREADS / NUMBA_NUM_THREADS
+#: choose how many threads.
+PARALLEL = os.environ.get("VGX_PARALLEL", "1") != "0"
+
+#: Virtual screen of the VGX (porting conventions section 4).
+SCREEN_WIDTH = 1280
+SCREEN_HEIGHT = 1024
+
+#: Default size of a window opened without prefsize/prefposition.
+DEFAULT_WINDOW_SIZE = (640, 480)
+
+#: Event queue length (qdevice(3G): the queue holds 101 entries).
+QUEUE_LENGTH = 101
+
+#: The largest polygon (bgnpolygon(3G), GD_NVERTEX_POLY).
+MAX_POLYGON_VERTICES = 256
+
+#: Error mode: "strict" raises GLError, "lenient" prints "GL: ..." on stderr
+#: and ignores the call (Decision 14).  VGX_ERRORS=lenient selects it.
+ERROR_MODE = os.environ.get("VGX_ERRORS", "strict")

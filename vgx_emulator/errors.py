@@ -1,0 +1,50 @@
+"""GLError and the strict/lenient switch (porting conventions 5, Decision 14)."""
+import sys
+import warnings
+
+from . import config
+
+
+class GLError(Exception):
+    """A call used wrongly.  The message starts with the call's name and says
+    what was wrong and what is allowed; the call changed no state."""
+
+
+class VGXWarning(UserWarning):
+    """Something was dropped or clamped (non-finite vertex, undefined object)."""
+
+
+_mode = {"lenient": config.ERROR_MODE == "lenient"}
+
+
+def set_error_mode(mode):
+    """'strict' (default: raise GLError) or 'lenient' (print ``GL: ...`` on
+    stderr and ignore the call, as the original library did)."""
+    if mode not in ("strict", "lenient"):
+        raise ValueError("error mode is 'strict' or 'lenient'")
+    _mode["lenient"] = mode == "lenient"
+
+
+def error_mode():
+    return "lenient" if _mode["lenient"] else "strict"
+
+
+def is_lenient():
+    return _mode["lenient"]
+
+
+def report(err):
+    """Lenient mode: what the original libgl did, a diagnostic on stderr."""
+    print(f"GL: {err}", file=sys.stderr)
+
+
+def fail(call, what, allowed=None):
+    """Raise GLError("<call>: <what>; <allowed>")."""
+    msg = f"{call}: {what}"
+    if allowed:
+        msg += f"; {allowed}"
+    raise GLError(msg)
+
+
+def warn(call, what):
+    warnings.warn(f"{call}: {what}", VGXWarning, stacklevel=3)

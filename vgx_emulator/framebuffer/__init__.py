@@ -1,0 +1,70 @@
+"""The bitplanes of one window.
+
+A bank exists only when the configuration asks for it (issue: "a buffer
+exists only once the configuration asks for it"):
+
+============ ===================================================== ============
+bank         created by                                            array
+============ ===================================================== ============
+front colour winopen                                               uint32 (h, w)
+back colour  gconfig() after doublebuffer()                        uint32 (h, w)
+z            first zbuffer(TRUE), zclear, czclear or lsetdepth use int32 (h, w)
+stencil      gconfig() after stensize(n > 0)                       uint8 (h, w)
+accumulation gconfig() after acsize(16)                            int16 (h, w, 4)
+============ ===================================================== ============
+
+Colour words are packed ``0xAABBGGRR`` in RGB mode and hold the colour index
+in colour-map mode.  Row 0 is the bottom row of the window (IRIS GL's origin
+is the lower left), so ``plane[y, x]`` is window pixel (x, y).
+The z plane holds the signed 24-bit VGX value sign-extended in an int32
+(Decision 3).
+"""
+import numpy as np
+
+ZMIN = -0x800000
+ZMAX = 0x7FFFFF
+
+
+def _plane(h, w, dtype, fill=0):
+    return np.full((h, w), fill, dtype=dtype)
+
+
+class Framebuffer:
+    """Allocation of the banks of one window, per its configuration."""
+
+    def __init__(self, width, height):
+        self.width = width
+        self.height = height
+        self.front = _plane(height, width, np.uint32)
+        self.back = None
+        self.z = None
+        self.stencil = None
+        self.stencil_planes = 0
+        self.accum = None
+
+    def configure(self, double, stencil_planes, accum_planes):
+        """Apply gconfig(): create or drop the back, stencil and accumulation banks."""
+        h, w = self.height, self.width
+        if double and self.back is None:
+            self.back = _plane(h, w, np.uint32)
+        elif not double:
+            self.back = None
+        self.stencil_planes = stencil_planes
+        self.stencil = _plane(h, w, np.uint8) if stencil_planes else None
+        self.accum = np.zeros((h, w, 4), np.int16) if accum_planes else None
+
+    def ensure_z(self):
+        """The z bank, created on first use (initial contents: GD_ZMAX)."""
+        if self.z is None:
+            self.z = _plane(self.height, self.width, np.int32, ZMAX)
+        return self.z
+
+    def swap(self):
+        """swapbuffers(): exchange front and back."""
+        if self.back is not None:
+            self.front, self.back = self.back, self.front
+
+    def nbytes(self):
+        """Memory held by the banks that exist."""
+        return sum(a.nbytes for a in (self.front, self.back, self.z,
+                                      self.stencil, self.accum) if a is not None)

@@ -1,0 +1,239 @@
+"""The Geometry Subsystem: one batch of primitives, vectorised.
+
+``process_batch`` reads like the VGX geometry pipeline, top to bottom:
+
+1. transform   object -> eye (ModelView) -> clip (Projection), per vertex run
+2. light       the lighting equation on lit vertices (lighting.py)
+3. assemble    polygons, meshes, strips, lines, points -> index arrays
+4. clip        homogeneous clipping, including w <= 0 (clip.py)
+5. divide      perspective divide, viewport and depth-range mapping,
+               snapping (viewport.py)
+
+It returns the window-space work for the scan converter.  Non-finite input
+never crashes: a primitive touching a non-finite position, normal, colour or
+transformed vertex is dropped with a warning naming the calls.
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import warn
+from . import assemble, clip, lighting, viewport
+from .assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
+from .batch import COLOUR_SINCE_BIND, FILLED, LAST_WAS_NORMAL, LINES
+from .stack import MVIEWING
+
+
+@dataclass
+class WindowWork:
+    """What the scan converter needs, all in window coordinates."""
+    klass: int
+    X: np.ndarray = None           # (V,) int64 fixed point
+    Y: np.ndarray = None
+    Z: np.ndarray = None           # (V,) float64 window z
+    C: np.ndarray = None           # (V, 4) front colours 0..255 (index in [:,0])
+    CB: np.ndarray = None          # (V, 4) back colours (two-sided lighting)
+    tris: np.ndarray = None        # (T, 3)
+    prov: np.ndarray = None        # (T,) provoking vertex
+    seg0: np.ndarray = None        # (S, 7) x, y, z, r, g, b, a
+    seg1: np.ndarray = None
+    segflat: np.ndarray = None     # (S, 4)
+    points: np.ndarray = None      # (P, 7)
+    twoside: bool = False
+    dropped: int = 0
+    extra: dict = field(default_factory=dict)
+
+
+def lighting_active(st, defs):
+    """Lighting is computed only while MATERIAL != 0 and LMODEL != 0, in
+    MVIEWING (lmbind(3G), reference 9.3)."""
+    return (st.material != 0 and st.lmodel != 0 and st.matrices.mode == MVIEWING
+            and st.material in defs[lighting.DEFMATERIAL]
+            and st.lmodel in defs[lighting.DEFLMODEL])
+
+
+def _transform(pos, attrs, xforms):
+    xf = attrs[:, 8].astype(np.int64)
+    if len(xforms) == 1:
+        t = xforms[0]
+        return pos @ t.modelview, pos @ t.clip, xf
+    mv = np.stack([t.modelview for t in xforms])
+    cm = np.stack([t.clip for t in xforms])
+    eye = np.einsum("ni,nij->nj", pos, mv[xf])
+    clp = np.einsum("ni,nij->nj", pos, cm[xf])
+    return eye, clp, xf
+
+
+def _light(st, defs, eye4, attrs, xf, xforms):
+    """Front and back colours of every vertex (reference 9)."""
+    col = attrs[:, 3:7].copy()
+    if not lighting_active(st, defs):
+        return col, None
+    flags = attrs[:, 7].astype(np.int64)
+    lmcolor = st.lmcolor
+    lit = np.ones(len(col), bool) if lmcolor != lighting.LMC_COLOR else \
+        (flags & LAST_WAS_NORMAL) != 0
+    if not lit.any():
+        return col, None
+    idx = np.nonzero(lit)[0]
+    nm = [lighting.normal_matrix(t.modelview) for t in xforms]
+    mats = np.stack([m for m, _ in nm])
+    ortho = np.array([o for _, o in nm])
+    n_obj = attrs[idx, 0:3]
+    n_eye = np.einsum("ni,nij->nj", n_obj, mats[xf[idx]])
+    renorm = (st.nmode == 1) | ~ortho[xf[idx]]
+    ln = np.sqrt((n_eye * n_eye).sum(axis=1, keepdims=True))
+    safe = np.divide(n_eye, ln, out=np.zeros_like(n_eye), where=ln > 0)
+    n_eye = np.where(renorm[:, None], safe, n_eye)
+    w = eye4[idx, 3:4]
+    eye = np.divide(eye4[idx, :3], w, out=np.zeros((len(idx), 3)), where=w != 0)
+    mdefs = defs[lighting.DEFMATERIAL]
+    mat = mdefs[st.material]
+    model = defs[lighting.DEFLMODEL][st.lmodel]
+    lights = [(defs[lighting.DEFLIGHT].get(b.index, lighting.defaults(lighting.DEFLIGHT)), b)
+              for _, b in sorted(st.lights.items())]
+    override = (flags[idx] & COLOUR_SINCE_BIND) != 0
+    vcol = attrs[idx, 3:7]
+    if not st.rgb:
+        col[idx] = lighting.shade_index(eye, n_eye, mat, lights, model)
+        return col, None
+    col[idx] = lighting.shade_rgb(eye, n_eye, mat, lights, model, vcol, override, lmcolor)
+    if model[lighting.TWOSIDE][0] == 0.0:
+        return col, None
+    back = col.copy()
+    bmat = mdefs.get(st.backmaterial, mat) if st.backmaterial else mat
+    back[idx] = lighting.shade_rgb(eye, -n_eye, bmat, lights, model, vcol, override, lmcolor)
+    return col, back
+
+
+def _assemble_filled(batch, pos, concave_prims):
+    """Triangles of every filled primitive, in submission order."""
+    prims = batch.prims
+    kinds = np.array([p[0] for p in prims], np.int64)
+    starts = np.array([p[1] for p in prims], np.int64)
+    counts = np.array([p[2] for p in prims], np.int64)
+    concave = np.array([p[3] for p in prims], bool)
+    seq = np.arange(len(prims))
+    parts, provs, orders = [], [], []
+    sel = (kinds == POLYGON) & ~concave
+    if sel.any():
+        t, p = assemble.polygons(starts[sel], counts[sel])
+        parts.append(t)
+        provs.append(p)
+        orders.append(np.repeat(seq[sel], np.maximum(counts[sel] - 2, 0)))
+    sel = kinds == QSTRIP
+    if sel.any():
+        t, p = assemble.qstrips(starts[sel], counts[sel])
+        parts.append(t)
+        provs.append(p)
+        orders.append(np.repeat(seq[sel], 2 * np.maximum((counts[sel] - 2) // 2, 0)))
+    sel = kinds == TMESH
+    if sel.any():
+        swap = np.zeros(len(pos), bool)
+        for s in batch.swaps:
+            swap[s] = ~swap[s]
+        t, p = assemble.tmeshes(starts[sel], counts[sel], swap)
+        parts.append(t)
+        provs.append(p)
+        orders.append(np.repeat(seq[sel], np.maximum(counts[sel] - 2, 0)))
+    for i in np.nonzero((kinds == POLYGON) & concave)[0]:
+        s, n = starts[i], counts[i]
+        if n < 3:
+            continue
+        xy = assemble.plane_coordinates(pos[s:s + n, :3] / pos[s:s + n, 3:4])
+        loc = np.array(assemble.triangulate_concave(xy), np.int64).reshape(-1, 3)
+        parts.append(loc + s)
+        provs.append(np.full(len(loc), s + n - 1, np.int64))
+        orders.append(np.full(len(loc), i))
+    if not parts:
+        z = np.zeros((0, 3), np.int64)
+        return z, np.zeros(0, np.int64)
+    tris = np.concatenate(parts)
+    prov = np.concatenate(provs)
+    order = np.argsort(np.concatenate(orders), kind="stable")
+    return tris[order], prov[order]
+
+
+def process_batch(batch, st, defs, snap, viewport_rect):
+    """Run the geometry pipeline over ``batch``; returns a WindowWork."""
+    pos, attrs = batch.arrays()
+    eye4, clp, xf = _transform(pos, attrs, batch.xforms)
+    col, back = _light(st, defs, eye4, attrs, xf, batch.xforms)
+    bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
+            & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))
+    gx, gy = viewport.guard_factors(viewport_rect)
+    work = WindowWork(klass=batch.klass, twoside=back is not None)
+    near_far = st.depth_range
+    if batch.klass == FILLED:
+        tris, prov = _assemble_filled(batch, pos, None)
+        drop = bad[tris].any(axis=1) | bad[prov]
+        work.dropped = int(drop.sum())
+        tris, prov = tris[~drop], prov[~drop]
+        codes = clip.outcodes(clp, gx, gy)
+        ca, cb, cc = codes[tris[:, 0]], codes[tris[:, 1]], codes[tris[:, 2]]
+        inside = (ca | cb | cc) == 0
+        reject = (ca & cb & cc) != 0
+        cross = ~inside & ~reject
+        attrs_cols = col if back is None else np.concatenate((col, back), axis=1)
+        verts = np.concatenate((clp, attrs_cols), axis=1)
+        src_in = np.nonzero(inside)[0]
+        keep_t, keep_p, keep_o = [tris[inside]], [prov[inside]], [src_in]
+        if cross.any():
+            ci = np.nonzero(cross)[0]
+            newv, nt, npv, src = clip.clip_triangles(verts, tris[ci], prov[ci], codes, gx, gy)
+            verts = np.concatenate((verts, newv))
+            keep_t.append(nt)
+            keep_p.append(npv)
+            keep_o.append(ci[src])      # pieces keep the place of their source
+        order = np.argsort(np.concatenate(keep_o), kind="stable")
+        work.tris = np.concatenate(keep_t)[order]
+        work.prov = np.concatenate(keep_p)[order]
+        xw, yw, zw = viewport.to_window(verts[:, :4], viewport_rect, near_far, snap)
+        ok = np.isfinite(xw) & np.isfinite(yw) & np.isfinite(zw)
+        xw, yw, zw = np.where(ok, xw, 0.0), np.where(ok, yw, 0.0), np.where(ok, zw, 0.0)
+        work.X = viewport.to_fixed(xw)
+        work.Y = viewport.to_fixed(yw)
+        work.Z = zw
+        work.C = np.ascontiguousarray(verts[:, 4:8])
+        work.CB = np.ascontiguousarray(verts[:, 8:12]) if back is not None else work.C
+    elif batch.klass == LINES:
+        starts = np.array([p[1] for p in batch.prims], np.int64)
+        counts = np.array([p[2] for p in batch.prims], np.int64)
+        closed = np.array([p[0] == CLOSEDLINE for p in batch.prims], bool)
+        segs, prov = assemble.polylines(starts, counts, closed)
+        drop = bad[segs].any(axis=1)
+        work.dropped = int(drop.sum())
+        segs, prov = segs[~drop], prov[~drop]
+        p0, p1, kept = clip.clip_segments(clp, col, segs, gx, gy)
+        work.seg0 = _window_rows(p0, viewport_rect, near_far, snap)
+        work.seg1 = _window_rows(p1, viewport_rect, near_far, snap)
+        work.segflat = np.ascontiguousarray(col[prov[kept]])
+    else:
+        idx = np.array([p[1] + k for p in batch.prims for k in range(p[2])], np.int64) \
+            if len(batch.prims) < 64 else _point_indices(batch)
+        drop = bad[idx]
+        work.dropped = int(drop.sum())
+        idx = idx[~drop]
+        codes = clip.outcodes(clp[idx], gx, gy)
+        idx = idx[codes == 0]
+        rows = np.concatenate((clp[idx], col[idx]), axis=1)
+        work.points = _window_rows(rows, viewport_rect, near_far, snap)
+    if work.dropped:
+        warn("v*/n3f/c*", f"{work.dropped} primitive(s) with a non-finite vertex, "
+             "normal, colour or transformed position dropped")
+    return work
+
+
+def _point_indices(batch):
+    starts = np.array([p[1] for p in batch.prims], np.int64)
+    counts = np.array([p[2] for p in batch.prims], np.int64)
+    return assemble._ranges(starts, counts)[0]
+
+
+def _window_rows(rows, vp, near_far, snap):
+    """Clip-space rows (x, y, z, w, r, g, b, a) -> window rows (x, y, z, r, g, b, a)."""
+    out = np.empty((len(rows), 7))
+    if len(rows):
+        out[:, 0], out[:, 1], out[:, 2] = viewport.to_window(rows[:, :4], vp, near_far, snap)
+        out[:, 3:7] = rows[:, 4:8]
+    return out

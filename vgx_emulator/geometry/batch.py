@@ -1,0 +1,84 @@
+"""The immediate-mode vertex stream of one window.
+
+``v*`` calls append a position and a key into a small table of attribute
+records (normal, colour, flags, transform); a new record is made only when a
+normal, colour or matrix call changed something since the last vertex, so a
+vertex costs two list appends.  Primitives are (kind, start, count, seq,
+flags) records.  A batch holds one class of primitive (filled, line or point)
+so that drawing order between classes is kept by flushing on a change.
+"""
+import numpy as np
+
+from .assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
+
+FILLED, LINES, POINTS = 0, 1, 2
+CLASS_OF = {POLYGON: FILLED, TMESH: FILLED, QSTRIP: FILLED,
+            LINE: LINES, CLOSEDLINE: LINES, POINT: POINTS}
+
+# attribute record flags
+LAST_WAS_NORMAL = 1
+COLOUR_SINCE_BIND = 2
+
+
+class Transform:
+    """Matrices in force for a run of vertices (float64)."""
+
+    __slots__ = ("modelview", "projection", "clip")
+
+    def __init__(self, modelview, projection):
+        self.modelview = modelview
+        self.projection = projection
+        self.clip = modelview @ projection
+
+
+class VertexBatch:
+    def __init__(self):
+        self.open = None            # (kind, call name) of the primitive being built
+        self.reset()
+
+    def reset(self):
+        self.pos = []
+        self.akey = []
+        self.attrs = []
+        self.xforms = []
+        self.prims = []
+        self.swaps = []             # vertex indices with a swaptmesh before them
+        self.klass = None
+        self.start = 0
+        self.cur = -1
+        self.dirty = True           # attributes changed since the last record
+        self.xf_dirty = True        # matrices changed since the last Transform
+
+    def __len__(self):
+        return len(self.prims)
+
+    def record_attributes(self, st):
+        """Make the attribute record for the following vertices."""
+        if self.xf_dirty or not self.xforms:
+            mv, pr = st.matrices.vertex_matrices()
+            self.xforms.append(Transform(mv, pr))
+            self.xf_dirty = False
+        flags = (LAST_WAS_NORMAL if st.last_was_normal else 0) | \
+                (COLOUR_SINCE_BIND if st.colour_since_bind else 0)
+        self.attrs.append(st.normal + st.colour + (flags, len(self.xforms) - 1))
+        self.cur = len(self.attrs) - 1
+        self.dirty = False
+
+    def keep_open_primitive(self):
+        """After a flush inside bgn/end: keep only the open primitive's vertices."""
+        pos = self.pos[self.start:]
+        akey = self.akey[self.start:]
+        swaps = [s - self.start for s in self.swaps if s >= self.start]
+        attrs, xforms, klass = self.attrs, self.xforms, self.klass
+        self.reset()
+        self.pos, self.akey, self.swaps = pos, akey, swaps
+        self.attrs, self.xforms, self.klass = attrs, xforms, klass
+        self.cur = len(attrs) - 1
+        self.dirty = True
+        self.xf_dirty = True
+
+    def arrays(self):
+        """(positions (N, 4), attributes (N, 9)) as float64 arrays."""
+        pos = np.array(self.pos, np.float64).reshape(-1, 4)
+        attrs = np.array(self.attrs, np.float64).reshape(-1, 9)
+        return pos, attrs[np.asarray(self.akey, np.int64)]

@@ -1,0 +1,165 @@
+"""Homogeneous clipping of triangles, segments and points.
+
+A vertex (x, y, z, w) in clip space is inside when every plane distance is
+>= 0 (reference section 2, "geometry behind the eye never wraps"):
+
+=====  ==============  ======================================
+plane  distance        why
+=====  ==============  ======================================
+0, 1   g_x w +- x      guard band (config.GUARD_BAND_PIXELS)
+2, 3   g_y w +- y      guard band
+4      w + z           near plane
+5      w - z           far plane
+6      w - eps         w > 0: nothing behind the eye survives
+=====  ==============  ======================================
+
+x and y are clipped only against the guard band (g >= 1); the rasterizer's
+scissor trims the rest exactly, so most triangles are never cut.  Vertices
+made by clipping are computed from the inside vertex towards the outside one,
+so an edge shared by two triangles is cut at bit-identical points (the mesh
+stays watertight after clipping).
+"""
+import numpy as np
+
+from ..jit import njit
+
+NPLANES = 7
+W_EPSILON = 1e-30
+
+
+def distances(v, gx, gy):
+    """(N, 7) plane distances of clip-space vertices (N, 4)."""
+    x, y, z, w = v[:, 0], v[:, 1], v[:, 2], v[:, 3]
+    return np.stack((gx * w + x, gx * w - x, gy * w + y, gy * w - y,
+                     w + z, w - z, w - W_EPSILON), axis=1)
+
+
+def outcodes(v, gx, gy):
+    """Bit p set when the vertex is outside plane p; non-finite -> all bits."""
+    d = distances(v, gx, gy)
+    out = d < 0
+    codes = (out * (1 << np.arange(NPLANES))).sum(axis=1).astype(np.int64)
+    bad = ~np.isfinite(v).all(axis=1)
+    codes[bad] = (1 << NPLANES) - 1
+    return codes
+
+
+@njit
+def _dist(v, p, gx, gy):
+    x = v[0]
+    y = v[1]
+    z = v[2]
+    w = v[3]
+    if p == 0:
+        return gx * w + x
+    if p == 1:
+        return gx * w - x
+    if p == 2:
+        return gy * w + y
+    if p == 3:
+        return gy * w - y
+    if p == 4:
+        return w + z
+    if p == 5:
+        return w - z
+    return w - 1e-30
+
+
+@njit
+def clip_triangles(verts, tris, prov, codes, gx, gy):
+    """Sutherland-Hodgman against the planes each triangle crosses.
+
+    verts: (N, C) rows = clip x, y, z, w then attributes (interpolated
+    linearly in clip space).  Returns (new_verts (M, C), tris (Q, 3), prov
+    (Q,), source (Q,)); new vertex indices start at N; source is the row of
+    ``tris`` each piece came from.  The provoking index is kept (the
+    original vertex still holds the flat colour).
+    """
+    t = tris.shape[0]
+    c = verts.shape[1]
+    newv = np.empty((t * 12, c))
+    outt = np.empty((t * 10, 3), np.int64)
+    outp = np.empty(t * 10, np.int64)
+    outs = np.empty(t * 10, np.int64)
+    nv = 0
+    nt = 0
+    base = verts.shape[0]
+    poly = np.empty(16, np.int64)
+    tmp = np.empty(16, np.int64)
+    for i in range(t):
+        a = tris[i, 0]
+        b = tris[i, 1]
+        d = tris[i, 2]
+        cross = codes[a] | codes[b] | codes[d]
+        n = 3
+        poly[0] = a
+        poly[1] = b
+        poly[2] = d
+        for p in range(7):
+            if not (cross >> p) & 1:
+                continue
+            m = 0
+            for k in range(n):
+                ia = poly[k]
+                ib = poly[(k + 1) % n]
+                va = verts[ia] if ia < base else newv[ia - base]
+                vb = verts[ib] if ib < base else newv[ib - base]
+                da = _dist(va, p, gx, gy)
+                db = _dist(vb, p, gx, gy)
+                if da >= 0:
+                    tmp[m] = ia
+                    m += 1
+                if (da >= 0) != (db >= 0):
+                    # cut from the inside vertex towards the outside one
+                    if da >= 0:
+                        vin, vout, din, dout = va, vb, da, db
+                    else:
+                        vin, vout, din, dout = vb, va, db, da
+                    s = din / (din - dout)
+                    for q in range(c):
+                        newv[nv, q] = vin[q] + s * (vout[q] - vin[q])
+                    tmp[m] = base + nv
+                    nv += 1
+                    m += 1
+            n = m
+            for k in range(n):
+                poly[k] = tmp[k]
+            if n < 3:
+                break
+        for k in range(1, n - 1):
+            outt[nt, 0] = poly[0]
+            outt[nt, 1] = poly[k]
+            outt[nt, 2] = poly[k + 1]
+            outp[nt] = prov[i]
+            outs[nt] = i
+            nt += 1
+    return newv[:nv].copy(), outt[:nt].copy(), outp[:nt].copy(), outs[:nt].copy()
+
+
+def clip_segments(v, attrs, segs, gx, gy):
+    """Liang-Barsky in homogeneous coordinates for segments (S, 2).
+
+    Returns (p0 (S', 4+K), p1 (S', 4+K), keep index into segs): the clipped
+    endpoints with attributes interpolated."""
+    a = np.concatenate((v, attrs), axis=1)
+    p0 = a[segs[:, 0]]
+    p1 = a[segs[:, 1]]
+    d0 = distances(p0[:, :4], gx, gy)
+    d1 = distances(p1[:, :4], gx, gy)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        finite = np.isfinite(p0[:, :4]).all(axis=1) & np.isfinite(p1[:, :4]).all(axis=1)
+        t0 = np.zeros(len(segs))
+        t1 = np.ones(len(segs))
+        keep = finite & ~((d0 < 0) & (d1 < 0)).any(axis=1)
+        for p in range(NPLANES):
+            a0, a1 = d0[:, p], d1[:, p]
+            enter = (a0 < 0) & (a1 >= 0)
+            leave = (a0 >= 0) & (a1 < 0)
+            s = a0 / (a0 - a1)
+            t0 = np.where(enter, np.maximum(t0, s), t0)
+            t1 = np.where(leave, np.minimum(t1, s), t1)
+        keep &= t0 <= t1
+    idx = np.nonzero(keep)[0]
+    q0, q1 = p0[idx], p1[idx]
+    s0, s1 = t0[idx][:, None], t1[idx][:, None]
+    return q0 + s0 * (q1 - q0), q0 + s1 * (q1 - q0), idx

@@ -1,0 +1,221 @@
+"""Lighting: definitions (lmdef), bindings (lmbind) and the lighting equation.
+
+Reference section 9; Decisions 9.  Per vertex, in eye space, RGB mode::
+
+    C = Em + Am*Alm + sum_i Att_i * Spot_i * (Am*Ali + Dm*Ci*max(N.Li, 0)
+                                              + Sm*Ci*max(N.Hi, 0)**sh)
+    alpha = material ALPHA
+
+Em/Am/Dm/Sm: material EMISSION/AMBIENT/DIFFUSE/SPECULAR; Alm: model AMBIENT;
+Ali: light AMBIENT; Ci: light LCOLOR; sh: SHININESS (0 turns the specular term
+off, Decision 9).  Li is the unit vector to the light (its direction when
+POSITION has w = 0); Hi = normalize(Li + V), V = (0, 0, 1) unless LOCALVIEWER.
+Att_i = 1 / (k0 + k1 d + k2 d^2) for local lights only (model ATTENUATION,
+ATTENUATION2); Spot_i = max(-Li.D, 0)**exponent inside the spread, 0 outside,
+1 for spread 180 or an infinite light.  Components are clamped to [0, 1].
+Choice where the sources are silent (documented in docs/decisions.md): the
+specular term is 0 where N.Li <= 0, as in the GL Programming Guide's form.
+TWOSIDE lights back faces with -N and BACKMATERIAL (MATERIAL when none bound).
+Colour-map lighting (reference 9.5): index = amb + (diff-amb)*D + (spec-diff)*S
+with D, S the summed diffuse and specular intensities, clamped to spec.
+"""
+import numpy as np
+
+from ..errors import fail
+
+DEFMATERIAL, DEFLIGHT, DEFLMODEL = 0, 100, 200
+EMISSION, AMBIENT, DIFFUSE, SPECULAR, SHININESS, COLORINDEXES, ALPHA = 1, 2, 3, 4, 5, 6, 7
+LCOLOR, POSITION, SPOTDIRECTION, SPOTLIGHT = 101, 102, 103, 104
+LOCALVIEWER, ATTENUATION, ATTENUATION2, TWOSIDE = 201, 202, 203, 204
+LMC_COLOR, LMC_EMISSION, LMC_AMBIENT, LMC_DIFFUSE, LMC_SPECULAR, LMC_AD, LMC_NULL = range(7)
+
+#: property token -> (number of floats, default), one table per category.
+PROPERTIES = {
+    DEFMATERIAL: {EMISSION: (3, (0.0, 0.0, 0.0)), AMBIENT: (3, (0.2, 0.2, 0.2)),
+                  DIFFUSE: (3, (0.8, 0.8, 0.8)), SPECULAR: (3, (0.0, 0.0, 0.0)),
+                  SHININESS: (1, (0.0,)), COLORINDEXES: (3, (0.0, 127.5, 255.0)),
+                  ALPHA: (1, (1.0,))},
+    DEFLIGHT: {LCOLOR: (3, (1.0, 1.0, 1.0)), AMBIENT: (3, (0.0, 0.0, 0.0)),
+               POSITION: (4, (0.0, 0.0, 1.0, 0.0)), SPOTDIRECTION: (3, (0.0, 0.0, -1.0)),
+               SPOTLIGHT: (2, (0.0, 180.0))},
+    DEFLMODEL: {AMBIENT: (3, (0.2, 0.2, 0.2)), LOCALVIEWER: (1, (0.0,)),
+                ATTENUATION: (2, (1.0, 0.0)), ATTENUATION2: (1, (0.0,)),
+                TWOSIDE: (1, (0.0,))},
+}
+CATEGORY_NAMES = {DEFMATERIAL: "DEFMATERIAL", DEFLIGHT: "DEFLIGHT", DEFLMODEL: "DEFLMODEL"}
+
+
+def defaults(deftype):
+    return {tok: tuple(d) for tok, (_, d) in PROPERTIES[deftype].items()}
+
+
+def parse_properties(call, deftype, np_count, props):
+    """Read an lmdef property list up to LMNULL; returns {token: values}.
+
+    ``np_count`` is the C ``np`` (floats including LMNULL; 0 = read to
+    LMNULL).  Raises GLError for an unknown token, a short list or a missing
+    LMNULL; nothing is changed by the caller in that case.
+    """
+    table = PROPERTIES[deftype]
+    vals = [float(v) for v in props]
+    if np_count:
+        if np_count < 1 or np_count > len(vals):
+            fail(call, f"np = {np_count} but the property list has {len(vals)} floats",
+                 "np counts the floats including LMNULL, or is 0")
+        vals = vals[:np_count]
+    out = {}
+    i = 0
+    while True:
+        if i >= len(vals):
+            fail(call, "property list does not end with LMNULL", "end it with LMNULL")
+        tok = vals[i]
+        if tok == 0.0:
+            return out
+        itok = int(tok)
+        if itok != tok or itok not in table:
+            fail(call, f"unknown {CATEGORY_NAMES[deftype]} property {tok:g}",
+                 "allowed: " + ", ".join(str(t) for t in sorted(table)))
+        n = table[itok][0]
+        if i + 1 + n > len(vals):
+            fail(call, f"property {itok} needs {n} values", "give them before LMNULL")
+        v = tuple(vals[i + 1:i + 1 + n])
+        if not np.all(np.isfinite(v)):
+            fail(call, f"property {itok} has a non-finite value", "finite floats only")
+        out[itok] = v
+        i += 1 + n
+
+
+def normal_matrix(mv):
+    """3x3 matrix that takes object normals (row vectors) to eye space: the
+    inverse transpose of ModelView's upper 3x3 (nmode(3G)).  A singular
+    matrix (scale(1, 0, 1)) gets its cofactor matrix, which keeps a defined
+    direction instead of NaN.  Returns (matrix, orthonormal?)."""
+    m = np.asarray(mv, np.float64)[:3, :3]
+    cof = np.empty((3, 3))
+    for i in range(3):
+        for j in range(3):
+            rows = [r for r in range(3) if r != i]
+            cols = [c for c in range(3) if c != j]
+            minor = m[np.ix_(rows, cols)]
+            cof[i, j] = (-1) ** (i + j) * (minor[0, 0] * minor[1, 1] - minor[0, 1] * minor[1, 0])
+    det = float(np.dot(m[0], cof[0]))
+    scale = np.abs(m).max() ** 3 if np.isfinite(m).all() else 0.0
+    if scale > 0 and abs(det) > 1e-12 * scale:
+        nm = cof / det
+    else:
+        nm = cof
+    ortho = bool(np.allclose(m @ m.T, np.eye(3), atol=1e-6))
+    return nm, ortho
+
+
+class LightBinding:
+    """A light definition bound to LIGHTi, with its position and spot
+    direction in eye space as of the lmbind (or later lmdef) call."""
+
+    __slots__ = ("index", "eye_position", "eye_spot")
+
+    def __init__(self, index, props, modelview):
+        self.index = index
+        self.place(props, modelview)
+
+    def place(self, props, modelview):
+        mv = np.asarray(modelview, np.float64)
+        self.eye_position = np.asarray(props[POSITION], np.float64) @ mv
+        nm, _ = normal_matrix(mv)
+        d = np.asarray(props[SPOTDIRECTION], np.float64) @ nm
+        n = np.linalg.norm(d)
+        self.eye_spot = d / n if n > 0 else d
+
+
+def _normalize(v):
+    n = np.sqrt((v * v).sum(axis=1, keepdims=True))
+    return np.divide(v, n, out=np.zeros_like(v), where=n > 0)
+
+
+def _material_arrays(mat, n, vcol, override, lmcolor):
+    """Per-vertex material terms with the lmcolor(3G) redirection applied."""
+    em = np.broadcast_to(np.asarray(mat[EMISSION]), (n, 3)).copy()
+    am = np.broadcast_to(np.asarray(mat[AMBIENT]), (n, 3)).copy()
+    dm = np.broadcast_to(np.asarray(mat[DIFFUSE]), (n, 3)).copy()
+    sm = np.broadcast_to(np.asarray(mat[SPECULAR]), (n, 3)).copy()
+    alpha = np.full(n, mat[ALPHA][0])
+    if vcol is not None and lmcolor not in (LMC_COLOR, LMC_NULL) and override.any():
+        rgb = vcol[override, :3] / 255.0
+        target = {LMC_EMISSION: (em,), LMC_AMBIENT: (am,), LMC_DIFFUSE: (dm,),
+                  LMC_SPECULAR: (sm,), LMC_AD: (am, dm)}[lmcolor]
+        for t in target:
+            t[override] = rgb
+        if lmcolor in (LMC_DIFFUSE, LMC_AD):
+            alpha[override] = vcol[override, 3] / 255.0
+    return em, am, dm, sm, alpha
+
+
+def shade_rgb(eye, normals, mat, lights, model, vcol=None, override=None,
+              lmcolor=LMC_COLOR):
+    """The lighting equation for N vertices; returns (N, 4) colours in 0..255.
+
+    eye: (N, 3) eye-space positions; normals: (N, 3) unit eye-space normals;
+    mat: material property dict; lights: [(props, LightBinding)];
+    model: light-model property dict.
+    """
+    n = len(eye)
+    em, am, dm, sm, alpha = _material_arrays(mat, n, vcol, override, lmcolor)
+    col = em + am * np.asarray(model[AMBIENT])
+    local_viewer = model[LOCALVIEWER][0] != 0.0
+    v = _normalize(-eye) if local_viewer else np.broadcast_to((0.0, 0.0, 1.0), (n, 3))
+    k0, k1 = model[ATTENUATION]
+    k2 = model[ATTENUATION2][0]
+    sh = mat[SHININESS][0]
+    for props, bind in lights:
+        p = bind.eye_position
+        ci = np.asarray(props[LCOLOR])
+        ali = np.asarray(props[AMBIENT])
+        if p[3] == 0.0:
+            l = np.broadcast_to(_normalize(p[None, :3]), (n, 3))
+            factor = np.ones(n)
+        else:
+            to_light = p[:3] / p[3] - eye
+            d = np.sqrt((to_light * to_light).sum(axis=1))
+            l = _normalize(to_light)
+            denom = k0 + k1 * d + k2 * d * d
+            factor = np.divide(1.0, denom, out=np.zeros(n), where=denom > 0)
+            expo, spread = props[SPOTLIGHT]
+            if spread != 180.0:
+                cosang = -(l * bind.eye_spot).sum(axis=1)
+                inside = cosang >= np.cos(np.radians(spread))
+                factor = factor * np.where(inside, np.maximum(cosang, 0.0) ** expo, 0.0)
+        ndotl = (normals * l).sum(axis=1)
+        diff = np.maximum(ndotl, 0.0)
+        term = am * ali + dm * ci * diff[:, None]
+        if sh != 0.0:
+            h = _normalize(l + v)
+            ndoth = np.maximum((normals * h).sum(axis=1), 0.0)
+            spec = np.where(ndotl > 0.0, ndoth ** sh, 0.0)
+            term = term + sm * ci * spec[:, None]
+        col = col + factor[:, None] * term
+    out = np.empty((n, 4))
+    out[:, :3] = np.clip(col, 0.0, 1.0) * 255.0
+    out[:, 3] = np.clip(alpha, 0.0, 1.0) * 255.0
+    return out
+
+
+def shade_index(eye, normals, mat, lights, model):
+    """Colour-map lighting (reference 9.5): an index per vertex, in column 0."""
+    n = len(eye)
+    amb, dif, spe = mat[COLORINDEXES]
+    sh = mat[SHININESS][0]
+    dsum = np.zeros(n)
+    ssum = np.zeros(n)
+    v = np.broadcast_to((0.0, 0.0, 1.0), (n, 3))
+    for props, bind in lights:
+        p = bind.eye_position
+        l = np.broadcast_to(_normalize(p[None, :3]), (n, 3))
+        ndotl = (normals * l).sum(axis=1)
+        dsum += np.maximum(ndotl, 0.0)
+        if sh != 0.0:
+            h = _normalize(l + v)
+            ssum += np.where(ndotl > 0, np.maximum((normals * h).sum(axis=1), 0.0) ** sh, 0.0)
+    idx = amb + (dif - amb) * np.minimum(dsum, 1.0) + (spe - dif) * np.minimum(ssum, 1.0)
+    out = np.zeros((n, 4))
+    out[:, 0] = np.minimum(idx, spe)
+    return out

@@ -1,0 +1,180 @@
+"""Matrix stacks and the matrices the IRIS GL calls build (reference sections 1.2-2).
+
+Row-vector convention: a point ``p = [x y z w]`` is transformed as ``p . M``;
+the translation lives in row 3, the perspective-divide column is column 3.
+Every modelling or viewing call builds ``T`` and *premultiplies* the current
+matrix: ``C <- T . C``.  Matrices are stored as float32, as IRIS GL's
+``Matrix`` is ``float[4][4]``; products are formed in float64 and rounded back
+to float32 once.
+"""
+import math
+
+import numpy as np
+
+MSINGLE, MPROJECTION, MVIEWING, MTEXTURE = 0, 1, 2, 3
+STACK_DEPTH = 32           # MATRIXSTACKDEPTH
+
+IDENTITY = np.eye(4, dtype=np.float32)
+
+
+def as_matrix(m):
+    """A C ``Matrix`` argument (m[row][col]) as a float32 4x4 array."""
+    return np.array(m, dtype=np.float32).reshape(4, 4)
+
+
+def premultiply(t, c):
+    """``T . C`` in float64, stored as float32."""
+    return (np.asarray(t, np.float64) @ np.asarray(c, np.float64)).astype(np.float32)
+
+
+def translation(x, y, z):
+    """translate(3G): identity with row 3 = (x, y, z, 1)."""
+    m = np.eye(4)
+    m[3, :3] = (x, y, z)
+    return m
+
+
+def scaling(x, y, z):
+    """scale(3G): diag(x, y, z, 1)."""
+    return np.diag((float(x), float(y), float(z), 1.0))
+
+
+def rotation(degrees, axis):
+    """rot(3G)/rotate(3G): right-hand rotation about 'x', 'y' or 'z' (row vectors)."""
+    a = math.radians(degrees)
+    c, s = math.cos(a), math.sin(a)
+    m = np.eye(4)
+    i, j = {"x": (1, 2), "y": (2, 0), "z": (0, 1)}[axis]
+    m[i, i] = c
+    m[i, j] = s
+    m[j, i] = -s
+    m[j, j] = c
+    return m
+
+
+def ortho(l, r, b, t, n, f):
+    """ortho(3G) (and ortho2 with n = -1, f = 1)."""
+    m = np.zeros((4, 4))
+    m[0, 0] = 2.0 / (r - l)
+    m[1, 1] = 2.0 / (t - b)
+    m[2, 2] = -2.0 / (f - n)
+    m[3] = (-(r + l) / (r - l), -(t + b) / (t - b), -(f + n) / (f - n), 1.0)
+    return m
+
+
+def frustum(l, r, b, t, n, f):
+    """window(3G): the perspective frustum."""
+    m = np.zeros((4, 4))
+    m[0, 0] = 2.0 * n / (r - l)
+    m[1, 1] = 2.0 * n / (t - b)
+    m[2] = ((r + l) / (r - l), (t + b) / (t - b), -(f + n) / (f - n), -1.0)
+    m[3, 2] = -2.0 * f * n / (f - n)
+    return m
+
+
+def perspective(fovy_tenths, aspect, n, f):
+    """perspective(3G): fovy in tenths of degrees, aspect = width / height."""
+    t = n * math.tan(math.radians(fovy_tenths / 20.0))
+    return frustum(-t * aspect, t * aspect, -t, t, n, f)
+
+
+def lookat(vx, vy, vz, px, py, pz, twist_tenths):
+    """lookat(3G) as ``T(-v) . R . Rz(-twist)`` (reference section 2, Decision 8).
+
+    A line of sight parallel to Y takes -Z as the up reference.
+    """
+    fwd = np.array((px - vx, py - vy, pz - vz), np.float64)
+    fwd /= np.linalg.norm(fwd)
+    up = np.array((0.0, 1.0, 0.0))
+    side = np.cross(fwd, up)
+    if np.linalg.norm(side) < 1e-12 * max(1.0, np.abs(fwd).max()):
+        side = np.cross(fwd, np.array((0.0, 0.0, -1.0)))
+    side /= np.linalg.norm(side)
+    upv = np.cross(side, fwd)
+    r = np.eye(4)
+    r[:3, 0] = side
+    r[:3, 1] = upv
+    r[:3, 2] = -fwd
+    return translation(-vx, -vy, -vz) @ r @ rotation(-twist_tenths / 10.0, "z")
+
+
+def polarview(dist, azim, inc, twist):
+    """polarview(3G): translate(0,0,-dist); rotate(-twist,'z'); rotate(-inc,'x');
+    rotate(-azim,'z') issued in that order (each premultiplies)."""
+    m = translation(0, 0, -dist)
+    for ang, ax in ((-twist, "z"), (-inc, "x"), (-azim, "z")):
+        m = rotation(ang / 10.0, ax) @ m
+    return m
+
+
+class MatrixState:
+    """The matrices of one window and the mmode(3G) rules.
+
+    MSINGLE uses one stack whose top is the whole transformation; the
+    multi-matrix modes use a ModelView stack plus single Projection and
+    Texture matrices.  ``serial`` changes whenever a matrix that reaches the
+    vertices changes, so the batcher knows when to record a new transform.
+    """
+
+    def __init__(self):
+        self.mode = MSINGLE
+        self.reset()
+
+    def reset(self):
+        """Every stack emptied, every matrix identity (mmode(3G), Decision 7)."""
+        self.single = [IDENTITY.copy()]
+        self.modelview = [IDENTITY.copy()]
+        self.projection = IDENTITY.copy()
+        self.texture = IDENTITY.copy()
+        self.serial = getattr(self, "serial", 0) + 1
+
+    # -- the current matrix per mode -------------------------------------
+    def current(self):
+        if self.mode == MSINGLE:
+            return self.single[-1]
+        if self.mode == MVIEWING:
+            return self.modelview[-1]
+        if self.mode == MPROJECTION:
+            return self.projection
+        return self.texture
+
+    def set_current(self, m):
+        m = np.asarray(m, np.float32)
+        if self.mode == MSINGLE:
+            self.single[-1] = m
+        elif self.mode == MVIEWING:
+            self.modelview[-1] = m
+        elif self.mode == MPROJECTION:
+            self.projection = m
+        else:
+            self.texture = m
+        self.serial += 1
+
+    def stack(self):
+        """The pushable stack of the current mode, or None (MPROJECTION/MTEXTURE)."""
+        if self.mode == MSINGLE:
+            return self.single
+        if self.mode == MVIEWING:
+            return self.modelview
+        return None
+
+    def load_projection(self, m):
+        """perspective/ortho/window: load the single stack's top in MSINGLE,
+        replace Projection in every multi-matrix mode."""
+        m = np.asarray(m, np.float32)
+        if self.mode == MSINGLE:
+            self.single[-1] = m
+        else:
+            self.projection = m
+        self.serial += 1
+
+    # -- what the geometry engines use -----------------------------------
+    def vertex_matrices(self):
+        """(modelview, projection) as float64; MSINGLE gives (top, identity)."""
+        if self.mode == MSINGLE:
+            return self.single[-1].astype(np.float64), np.eye(4)
+        return self.modelview[-1].astype(np.float64), self.projection.astype(np.float64)
+
+    def modelview_matrix(self):
+        """The matrix that takes object coordinates to eye coordinates."""
+        return self.vertex_matrices()[0]

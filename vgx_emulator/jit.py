@@ -1,0 +1,27 @@
+"""The single njit alias of the project, with the flags of :mod:`config`.
+
+Every kernel is compiled through :func:`njit` (serial) or :func:`pnjit`
+(``parallel=True``, when enabled).  ``NUMBA_DISABLE_JIT=1`` runs the kernels
+as plain Python for coverage and debugging.
+"""
+import numba
+
+from . import config
+
+_opts = dict(config.JIT_OPTIONS)
+
+
+def njit(fn=None, **extra):
+    """numba.njit with the project's options (cache on, fastmath off)."""
+    opts = dict(_opts, **extra)
+    if fn is None:
+        return lambda f: numba.njit(**opts)(f)
+    return numba.njit(**opts)(fn)
+
+
+def pnjit(fn):
+    """A kernel whose outer loop is a ``prange`` over framebuffer bands."""
+    return numba.njit(parallel=config.PARALLEL, **_opts)(fn)
+
+
+prange = numba.prange

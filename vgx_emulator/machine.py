@@ -1,0 +1,410 @@
+"""The VGX: windows, the current window, batching and flush.
+
+The machine knows no C names: :mod:`irisgl` validates every argument, then
+calls one method here.  Methods change state only after their own checks
+passed, so a call that raises leaves everything as it was.
+
+Batching: vertices and primitives accumulate in the current window's
+:class:`VertexBatch`; any call that changes how already-issued primitives
+must be drawn (lighting, z-buffer, viewport, shading, buffers ...) first
+flushes the batch through the geometry subsystem and the scan converter.
+Matrix changes do not flush: each vertex run remembers its transform.
+Reads (lrectread, PNG output) flush too.
+"""
+import numpy as np
+
+from . import config, display, geometry, scan
+from .errors import fail, warn
+from .events import INPUTCHANGE, REDRAW, EventQueue
+from .framebuffer import ZMAX, ZMIN, Framebuffer
+from .geometry import lighting, stack
+from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
+from .geometry.batch import CLASS_OF, VertexBatch
+from .raster import fragment
+from .raster.variants import RasterKey
+from .scan.spans import fill, fill_z
+from .scan.triangles import CULL_BACK, CULL_BOTH, CULL_FRONT, CULL_NONE
+from .state import WindowState
+
+KIND_NAMES = {POLYGON: "polygon", TMESH: "tmesh", QSTRIP: "qstrip", LINE: "line",
+              CLOSEDLINE: "closedline", POINT: "point"}
+SRC_AUTO, SRC_FRONT, SRC_BACK, SRC_ZBUFFER = 0, 1, 2, 3
+
+_DUMMY_C = np.zeros((1, 1), np.uint32)
+_DUMMY_Z = np.zeros((1, 1), np.int32)
+
+
+class Window:
+    """One IRIS GL window: its bitplanes, its graphics state, its batch."""
+
+    def __init__(self, gid, name, x, y, width, height):
+        self.gid = gid
+        self.name = name
+        self.origin = (x, y)
+        self.width = width
+        self.height = height
+        self.fb = Framebuffer(width, height)
+        self.st = WindowState(width, height)
+        self.batch = VertexBatch()
+        self.readsource = SRC_AUTO
+        self.frames = 0
+
+
+class VGX:
+    """The emulated IRIS-4D VGX: a virtual 1280x1024 screen with windows."""
+
+    def __init__(self):
+        self.windows = {}
+        self.current = None
+        self.next_gid = 1
+        self.events = EventQueue()
+        self.colormap = display.default_colormap()
+        self.defs = {lighting.DEFMATERIAL: {}, lighting.DEFLIGHT: {}, lighting.DEFLMODEL: {}}
+        self.pref = {}
+        self.frame_hook = None         # runner: called at each frame end
+        self.last_image = None         # what the last closed window showed
+
+    # ------------------------------------------------------------------
+    # windows and configuration (reference 4, 13)
+    def window(self, call):
+        """The current window, or GLError for a call before winopen."""
+        if self.current is None:
+            fail(call, "no window is open", "call winopen first")
+        return self.current
+
+    def winopen(self, name):
+        x, y = self.pref.get("origin", (0, 0))
+        w, h = self.pref.get("size", config.DEFAULT_WINDOW_SIZE)
+        win = Window(self.next_gid, name, x, y, w, h)
+        self.next_gid += 1
+        self.windows[win.gid] = win
+        self.current = win
+        self.pref = {}
+        # winopen queues INPUTCHANGE and REDRAW for the new window
+        self.events.qdevice(INPUTCHANGE)
+        self.events.qdevice(REDRAW)
+        self.events.post(INPUTCHANGE, win.gid)
+        self.events.post(REDRAW, win.gid, coalesce=True)
+        return win.gid
+
+    def winclose(self, gid):
+        win = self.windows[gid]
+        self._flush(win)
+        self.last_image = self.image(win)
+        del self.windows[gid]
+        if self.current is win:
+            self.current = next(iter(self.windows.values()), None)
+
+    def winset(self, gid):
+        self.flush()
+        self.current = self.windows[gid]
+
+    def gexit(self):
+        for gid in list(self.windows):
+            self.winclose(gid)
+        self.events.reset_all()
+
+    def gconfig(self, win):
+        """Apply the configuration requests (gconfig(3G))."""
+        self._flush(win)
+        st = win.st
+        st.rgb = st.req_rgb
+        st.double = st.req_double
+        win.fb.configure(st.double, st.req_stencil, st.req_accum)
+        st.colour = (0.0, 0.0, 0.0, 0.0)
+        st.zwritemask = 0xFFFFFF
+        st.front_enabled = not st.double
+        st.back_enabled = st.double
+
+    def swapbuffers(self, win):
+        self._flush(win)
+        if win.st.double:
+            win.fb.swap()
+        self.frame_end(win)
+
+    def frame_end(self, win):
+        """A frame point (swapbuffers, gflush, finish): the runner counts it."""
+        self._flush(win)
+        win.frames += 1
+        if self.frame_hook is not None:
+            self.frame_hook(self, win)
+
+    # ------------------------------------------------------------------
+    # batching
+    def state_change(self, win=None):
+        """Flush primitives already issued before a state change."""
+        win = win or self.current
+        if win is not None and win.batch.prims:
+            self._flush(win)
+
+    def flush(self):
+        if self.current is not None:
+            self._flush(self.current)
+
+    def _flush(self, win):
+        b = win.batch
+        if not b.prims:
+            return
+        st = win.st
+        vp = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
+        if vp is not None:
+            work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport)
+            key, planes, ip = self._raster_setup(win, work)
+            cull = (CULL_BACK if st.backface else CULL_NONE) | \
+                   (CULL_FRONT if st.frontface else CULL_NONE)
+            scan.scan_batch(work, key, planes, ip, cull, not st.subpixel)
+        if b.open is not None:
+            b.keep_open_primitive()
+        else:
+            b.reset()
+
+    def _targets(self, win):
+        """The colour banks drawing goes to (frontbuffer/backbuffer(3G))."""
+        st, fb = win.st, win.fb
+        if not st.double:
+            return [fb.front]
+        out = []
+        if st.back_enabled:
+            out.append(fb.back)
+        if st.front_enabled:
+            out.append(fb.front)
+        return out
+
+    def _raster_setup(self, win, work):
+        st, fb = win.st, win.fb
+        targets = self._targets(win)
+        ztest = st.zbuffer
+        zmask = st.zwritemask & 0xFFFFFF
+        key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=len(targets) > 0,
+                        gouraud=st.gouraud, cmode=not st.rgb,
+                        twoside=bool(work.twoside))
+        zb = fb.ensure_z() if ztest else _DUMMY_Z
+        c0 = targets[0] if targets else _DUMMY_C
+        c1 = targets[1] if len(targets) > 1 else _DUMMY_C
+        planes = (c0, c1, zb)
+        sc = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
+        ip = np.zeros(fragment.NPARAMS, np.int64)
+        ip[fragment.P_SX0], ip[fragment.P_SX1], ip[fragment.P_SY0], ip[fragment.P_SY1] = sc
+        ip[fragment.P_ZFUNC] = st.zfunc
+        ip[fragment.P_ZMASK] = -1 if zmask == 0xFFFFFF else zmask
+        near, far = st.depth_range
+        ip[fragment.P_ZLO] = min(near, far)
+        ip[fragment.P_ZHI] = max(near, far)
+        ip[fragment.P_NCB] = len(targets)
+        return key, planes, ip
+
+    # ------------------------------------------------------------------
+    # primitives (reference 3.2)
+    def begin(self, win, kind, call):
+        b = win.batch
+        if b.open is not None:
+            fail(call, f"already inside bgn{KIND_NAMES[b.open[0]]}",
+                 f"close it with end{KIND_NAMES[b.open[0]]} first")
+        klass = CLASS_OF[kind]
+        if b.prims and b.klass != klass:
+            self._flush(win)
+        b.klass = klass
+        b.open = (kind, call)
+        b.start = len(b.pos)
+
+    def end(self, win, kind, call):
+        b = win.batch
+        if b.open is None or b.open[0] != kind:
+            inside = f"inside bgn{KIND_NAMES[b.open[0]]}" if b.open else "not inside any bgn call"
+            fail(call, f"{inside}", f"end{KIND_NAMES[kind]} closes bgn{KIND_NAMES[kind]}")
+        n = len(b.pos) - b.start
+        concave = kind == POLYGON and win.st.concave
+        if n:
+            b.prims.append((kind, b.start, n, concave))
+        b.open = None
+        b.start = len(b.pos)
+
+    def vertex(self, win, x, y, z, w, call):
+        b = win.batch
+        if b.open is None:
+            fail(call, "vertex outside bgn/end", "call it between bgn* and end*")
+        if b.open[0] == POLYGON and len(b.pos) - b.start >= config.MAX_POLYGON_VERTICES:
+            fail(call, f"more than {config.MAX_POLYGON_VERTICES} vertices in a polygon",
+                 "GD_NVERTEX_POLY is 256")
+        if b.dirty:
+            b.record_attributes(win.st)
+        b.pos.append((x, y, z, w))
+        b.akey.append(b.cur)
+
+    def swaptmesh(self, win):
+        b = win.batch
+        if b.open is None or b.open[0] != TMESH:
+            fail("swaptmesh", "not inside bgntmesh", "call it between bgntmesh and endtmesh")
+        b.swaps.append(len(b.pos))
+
+    def polyline_vertices(self, win, kind, pts, call):
+        """A whole primitive from a point list (rect, poly, polf, ...)."""
+        self.begin(win, kind, call)
+        for p in pts:
+            self.vertex(win, *p, call)
+        self.end(win, kind, call)
+
+    def move(self, win, p):
+        win.st.gpos = p
+
+    def draw(self, win, p, call):
+        st = win.st
+        start = st.gpos if st.gpos is not None else p
+        self.polyline_vertices(win, LINE, (start, p), call)
+        st.gpos = p
+
+    # ------------------------------------------------------------------
+    # current attributes: they do not flush, they start a new record
+    def set_colour(self, win, rgba):
+        st = win.st
+        st.colour = rgba
+        st.last_was_normal = False
+        if st.material:
+            st.colour_since_bind = True
+        win.batch.dirty = True
+
+    def set_normal(self, win, n):
+        st = win.st
+        st.normal = n
+        st.last_was_normal = True
+        win.batch.dirty = True
+
+    def matrices_changed(self, win):
+        b = win.batch
+        b.dirty = True
+        b.xf_dirty = True
+
+    # ------------------------------------------------------------------
+    # lighting (reference 9)
+    def lmdef(self, deftype, index, props):
+        """Store a definition; ``props`` None resets it to the defaults.
+        Redefining a bound definition takes effect immediately, so every
+        window's pending primitives are drawn with the old one first; a bound
+        light's POSITION is re-transformed by the ModelView current now."""
+        for win in self.windows.values():
+            self._flush(win)
+        table = self.defs[deftype]
+        new = dict(table.get(index) or lighting.defaults(deftype))
+        if props is None:
+            new = lighting.defaults(deftype)
+        else:
+            new.update(props)
+        table[index] = new
+        if deftype == lighting.DEFLIGHT:
+            for win in self.windows.values():
+                for bind in win.st.lights.values():
+                    if bind.index == index:
+                        bind.place(new, win.st.matrices.modelview_matrix())
+
+    def lmbind(self, win, target, index):
+        st = win.st
+        self.state_change(win)
+        if target in (lighting_MATERIAL, lighting_BACKMATERIAL):
+            idx = index if index in self.defs[lighting.DEFMATERIAL] else 0
+            if target == lighting_MATERIAL:
+                st.material = idx
+            else:
+                st.backmaterial = idx
+            st.colour_since_bind = False
+            win.batch.dirty = True
+        elif target == lighting_LMODEL:
+            st.lmodel = index if index in self.defs[lighting.DEFLMODEL] else 0
+        else:
+            slot = target - lighting_LIGHT0
+            table = self.defs[lighting.DEFLIGHT]
+            if index == 0 or index not in table:
+                st.lights.pop(slot, None)
+                return
+            for other, bind in list(st.lights.items()):
+                if bind.index == index and other != slot:
+                    del st.lights[other]       # one light target per definition
+            st.lights[slot] = lighting.LightBinding(index, table[index],
+                                                    st.matrices.modelview_matrix())
+
+    # ------------------------------------------------------------------
+    # clears (reference 3.3, 5)
+    def clear_rect(self, win):
+        st = win.st
+        return _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
+
+    def clear(self, win):
+        self._flush(win)
+        r = self.clear_rect(win)
+        if r is None:
+            return
+        word = self.colour_word(win.st, win.st.colour)
+        for t in self._targets(win):
+            fill(t, r[0], r[1], r[2], r[3], np.uint32(word), np.uint32(0xFFFFFFFF))
+
+    def zclear(self, win):
+        self._flush(win)
+        r = self.clear_rect(win)
+        if r is None:
+            return
+        m = win.st.zwritemask & 0xFFFFFF
+        fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], ZMAX, m)
+
+    def czclear(self, win, cval, zval):
+        self._flush(win)
+        r = self.clear_rect(win)
+        if r is None:
+            return
+        word = cval & (0xFFFFFFFF if win.st.rgb else 0xFFF)
+        for t in self._targets(win):
+            fill(t, r[0], r[1], r[2], r[3], np.uint32(word), np.uint32(0xFFFFFFFF))
+        z = min(max(int(zval), ZMIN), ZMAX)
+        fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], z, 0xFFFFFF)
+
+    @staticmethod
+    def colour_word(st, colour):
+        if not st.rgb:
+            return int(colour[0]) & 0xFFF
+        r, g, b, a = (int(min(max(c, 0.0), 255.0) + 0.5) for c in colour)
+        return (a << 24) | (b << 16) | (g << 8) | r
+
+    # ------------------------------------------------------------------
+    # reading pixels (reference 11)
+    def read_bank(self, win, source):
+        fb = win.fb
+        if source == SRC_ZBUFFER:
+            return fb.ensure_z()
+        if source == SRC_BACK:
+            return fb.back
+        if source == SRC_FRONT or not win.st.double:
+            return fb.front
+        return fb.back
+
+    def lrectread(self, win, x1, y1, x2, y2, source):
+        """The (h, w) block with row 0 at y1; off-window pixels read 0."""
+        self._flush(win)
+        bank = self.read_bank(win, source)
+        h, w = y2 - y1 + 1, x2 - x1 + 1
+        out = np.zeros((h, w), bank.dtype)
+        xa, xb = max(x1, 0), min(x2, win.width - 1)
+        ya, yb = max(y1, 0), min(y2, win.height - 1)
+        if xa <= xb and ya <= yb:
+            out[ya - y1:yb - y1 + 1, xa - x1:xb - x1 + 1] = bank[ya:yb + 1, xa:xb + 1]
+        return out
+
+    # ------------------------------------------------------------------
+    # display
+    def image(self, win=None):
+        """What the screen shows of a window: (h, w, 3) uint8, top row first."""
+        win = win or self.current
+        self._flush(win)
+        return display.scanout(win.fb.front, win.st.rgb, self.colormap)
+
+
+lighting_MATERIAL, lighting_BACKMATERIAL = 1000, 1001
+lighting_LIGHT0, lighting_LMODEL = 1100, 1200
+
+
+def _intersect(*rects):
+    """Intersection of inclusive (x0, x1, y0, y1) rectangles, or None."""
+    x0 = max(r[0] for r in rects)
+    x1 = min(r[1] for r in rects)
+    y0 = max(r[2] for r in rects)
+    y1 = min(r[3] for r in rects)
+    if x0 > x1 or y0 > y1:
+        return None
+    return (x0, x1, y0, y1)

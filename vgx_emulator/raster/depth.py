@@ -1,0 +1,54 @@
+"""z-buffer test and write (zbuffer(3G), zfunction(3G), zwritemask(3G)).
+
+``zfunction``: the incoming z is compared with the stored z; the fragment
+passes when ``incoming FUNC stored`` (default ZF_LEQUAL).  z is quantized to
+an integer (round to nearest) and clamped to the lsetdepth range (Decision 4).
+``zwritemask``: only the 1-bits of the 24-bit value are written; the plane
+holds signed 24-bit values sign-extended in int32 (Decision 3).
+"""
+import math
+
+from ..jit import njit
+
+ZF_NEVER, ZF_LESS, ZF_EQUAL, ZF_LEQUAL, ZF_GREATER, ZF_NOTEQUAL, ZF_GEQUAL, ZF_ALWAYS = range(8)
+
+
+@njit
+def compare(func, a, b):
+    """``a FUNC b`` for the 8 IRIS GL comparison functions (ZF_*, SF_*, AF_*
+    share the numbering)."""
+    if func == 3:
+        return a <= b
+    if func == 1:
+        return a < b
+    if func == 7:
+        return True
+    if func == 0:
+        return False
+    if func == 2:
+        return a == b
+    if func == 4:
+        return a > b
+    if func == 5:
+        return a != b
+    return a >= b
+
+
+@njit
+def quantize(z, zlo, zhi):
+    """Window z -> stored integer: round to nearest, clamp to [zlo, zhi]."""
+    q = math.floor(z + 0.5)
+    if q < zlo:
+        q = zlo
+    if q > zhi:
+        q = zhi
+    return int(q)
+
+
+@njit
+def masked_write(stored, value, mask):
+    """zwritemask: keep stored bits where mask is 0; result sign-extended 24-bit."""
+    v = ((stored & ~mask) | (value & mask)) & 0xFFFFFF
+    if v & 0x800000:
+        v -= 0x1000000
+    return v

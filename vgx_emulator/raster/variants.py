@@ -1,0 +1,33 @@
+"""RasterKey: the pipeline state that selects a compiled kernel variant.
+
+Kernels are specialised on which stages a pass *enables*, never on the values
+those stages take (z function, masks, ...: those are runtime integers).  So
+a depth-only pass compiles to a loop with no colour work, a scene without a
+z-buffer never touches z memory, and the set of variants stays small (each
+field is a bool; only the combinations a program uses are compiled).
+
+``KERNEL_SOURCE_HASH`` hashes the source of every module a kernel inlines;
+it is a closure constant of each factory-built kernel, so numba's disk cache
+(keyed on closure values) is invalidated when any of them changes
+(pitfalls c.4).
+"""
+import hashlib
+from collections import namedtuple
+from pathlib import Path
+
+_PKG = Path(__file__).resolve().parent.parent
+
+
+def _source_hash():
+    h = hashlib.sha1()
+    for sub in ("scan", "raster"):
+        for f in sorted((_PKG / sub).glob("*.py")):
+            h.update(f.read_bytes())
+    h.update((_PKG / "config.py").read_bytes())
+    return h.hexdigest()[:16]
+
+
+KERNEL_SOURCE_HASH = _source_hash()
+
+#: Fields of the raster key, in kernel-factory argument order.
+RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside")

@@ -1,0 +1,54 @@
+"""Plain records of the state the IRIS GL calls write, per window.
+
+Calls set fields here (after validation); the machine derives what the
+pipeline needs (combined matrices, eye-space lights, the raster key) when a
+batch is flushed.  Initial values are those of a freshly opened window
+(reference 15 "Initial state", section 4 for gconfig).
+"""
+from .framebuffer import ZMAX, ZMIN
+from .geometry.stack import MatrixState
+
+
+class WindowState:
+    """Everything a window remembers between calls (one graphics context)."""
+
+    def __init__(self, width, height):
+        # configuration requests, effective at gconfig()
+        self.req_rgb = False
+        self.req_double = False
+        self.req_stencil = 0
+        self.req_accum = 0
+        # configuration in force
+        self.rgb = False
+        self.double = False
+        # geometry subsystem
+        self.matrices = MatrixState()
+        self.viewport = (0, width - 1, 0, height - 1)
+        self.scrmask = (0, width - 1, 0, height - 1)
+        self.viewport_stack = []
+        self.depth_range = (ZMIN, ZMAX)
+        self.backface = False
+        self.frontface = False
+        self.gouraud = True
+        self.subpixel = False
+        self.concave = False
+        self.nmode = 0                 # NAUTO
+        # current vertex attributes
+        self.colour = (0.0, 0.0, 0.0, 255.0)   # RGBA 0..255, or (index, 0, 0, 0)
+        self.normal = (0.0, 0.0, 1.0)
+        self.last_was_normal = False
+        self.colour_since_bind = False
+        # lighting bindings: target -> index; lights: slot -> LightBinding
+        self.material = 0
+        self.backmaterial = 0
+        self.lmodel = 0
+        self.lights = {}
+        self.lmcolor = 0               # LMC_COLOR
+        # raster subsystem
+        self.zbuffer = False
+        self.zfunc = 3                 # ZF_LEQUAL
+        self.zwritemask = 0xFFFFFF
+        self.front_enabled = True
+        self.back_enabled = False
+        # graphics position (move/draw) and character position
+        self.gpos = None
