@@ -54,6 +54,10 @@ class VGX:
     """The emulated IRIS-4D VGX: a virtual 1280x1024 screen with windows."""
 
     def __init__(self):
+        self.reset()
+
+    def reset(self):
+        """Power-on state: no windows, default colour map, empty definitions."""
         self.windows = {}
         self.current = None
         self.next_gid = 1

@@ -1,0 +1,90 @@
+"""vgx-run: run an unmodified ported IRIS GL program headless and save what
+it drew (porting conventions 4).
+
+The program runs as ``__main__``.  Every frame point (swapbuffers, gflush,
+finish) is counted; after ``--frames`` of them the program is stopped.  A
+``qread`` on an empty queue first gets a REDRAW for the current window if
+the program asked for REDRAW events and fewer frames than asked were drawn
+(one per frame, so a program that never draws cannot loop); otherwise it
+ends the program cleanly.  What the screen shows of the current window (or
+of the last window closed) is then saved as a PNG.
+"""
+import argparse
+import runpy
+import sys
+import time
+from pathlib import Path
+
+from .display.png import write_png
+from .events import REDRAW, QueueExhausted
+
+
+class FramesDone(BaseException):
+    """Raised by the runner's frame hook once enough frames were drawn."""
+
+
+def run_program(path, frames=1, argv=None):
+    """Run ``path`` headless for at most ``frames`` frames; return the
+    (h, w, 3) uint8 image it left on the screen (None if it drew nothing)."""
+    from irisgl._current import machine
+    machine.reset()
+    drawn = {"n": 0, "posted_at": -1}
+
+    def on_frame(m, win):
+        drawn["n"] += 1
+        if drawn["n"] >= frames:
+            raise FramesDone()
+
+    def on_wait():
+        w = machine.current
+        if (w is not None and REDRAW in machine.events.queued
+                and drawn["n"] < frames and drawn["posted_at"] != drawn["n"]):
+            drawn["posted_at"] = drawn["n"]
+            machine.events.enter(REDRAW, w.gid)
+
+    machine.frame_hook = on_frame
+    machine.events.wait_hook = on_wait
+    old_argv = sys.argv
+    sys.argv = [str(path)] + list(argv or [])
+    try:
+        runpy.run_path(str(path), run_name="__main__")
+    except (FramesDone, QueueExhausted):
+        pass
+    except SystemExit as e:
+        if e.code not in (0, None):
+            raise
+    finally:
+        sys.argv = old_argv
+        machine.frame_hook = None
+        machine.events.wait_hook = None
+    if machine.current is not None:
+        return machine.image(machine.current)
+    return machine.last_image
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="vgx-run", description=__doc__.splitlines()[0])
+    ap.add_argument("program", help="a ported IRIS GL program (.py)")
+    ap.add_argument("--out", default=None, help="PNG to write (default: PROGRAM.png)")
+    ap.add_argument("--frames", type=int, default=1, help="frames to let it draw (default 1)")
+    a, rest = ap.parse_known_args(argv)
+    a.args = [x for x in rest if x != "--"]
+    if a.frames < 1:
+        ap.error("--frames must be >= 1")
+    prog = Path(a.program)
+    if not prog.is_file():
+        ap.error(f"no such program: {prog}")
+    t0 = time.perf_counter()
+    img = run_program(prog, a.frames, a.args)
+    if img is None:
+        print(f"vgx-run: {prog} opened no window; nothing saved", file=sys.stderr)
+        return 1
+    out = Path(a.out) if a.out else prog.with_suffix(".png")
+    write_png(out, img)
+    print(f"vgx-run: {prog.name}: {img.shape[1]}x{img.shape[0]} -> {out} "
+          f"({time.perf_counter() - t0:.2f} s)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
