@@ -312,3 +312,132 @@ def gRGBcolor():
     """gRGBcolor(3G): ``r, g, b = gRGBcolor()``."""
     st = win("gRGBcolor").st
     return tuple(int(round(c)) for c in st.colour[:3])
+
+
+# -- fast paths for the per-vertex calls ------------------------------------
+# A ported program calls v*/n3f/c* once per vertex, so their cost is the
+# program's cost.  Each public call below tries the common case inline (a
+# window is open, inside bgn/end, attributes unchanged, numbers given) and
+# hands anything else to the validating version above, which raises the
+# proper GLError (or reports it in lenient mode).  Nothing is changed before
+# every value has been converted, so a failed fast path leaves no trace.
+
+class _Slow(Exception):
+    pass
+
+
+def _fast_vertex(slow, n):
+    if n == 2:
+        def v(a):
+            try:
+                x, y = a
+                win = machine.current
+                b = win.batch
+                if len(b.akey) >= b.cap or b.open is None:
+                    raise _Slow
+                p = (float(x), float(y), 0.0, 1.0)
+                if b.dirty:
+                    b.record_attributes(win.st)
+                b.pos += p
+                b.akey.append(b.cur)
+            except Exception:
+                slow(a)
+    elif n == 3:
+        def v(a):
+            try:
+                x, y, z = a
+                win = machine.current
+                b = win.batch
+                if len(b.akey) >= b.cap or b.open is None:
+                    raise _Slow
+                p = (float(x), float(y), float(z), 1.0)
+                if b.dirty:
+                    b.record_attributes(win.st)
+                b.pos += p
+                b.akey.append(b.cur)
+            except Exception:
+                slow(a)
+    else:
+        def v(a):
+            try:
+                x, y, z, w = a
+                win = machine.current
+                b = win.batch
+                if len(b.akey) >= b.cap or b.open is None:
+                    raise _Slow
+                p = (float(x), float(y), float(z), float(w))
+                if b.dirty:
+                    b.record_attributes(win.st)
+                b.pos += p
+                b.akey.append(b.cur)
+            except Exception:
+                slow(a)
+    v.__name__ = slow.__name__
+    v.__doc__ = slow.__doc__
+    v.__wrapped__ = slow
+    return v
+
+
+for _n in (2, 3, 4):
+    for _t in "sifd":
+        _name = f"v{_n}{_t}"
+        globals()[_name] = _fast_vertex(globals()[_name], _n)
+
+_n3f_checked = n3f
+
+
+def n3f(a):
+    """n3f(3G): the current normal for the following vertices."""
+    try:
+        x, y, z = a
+        w = machine.current
+        st = w.st
+        st.normal = (float(x), float(y), float(z))
+        st.last_was_normal = True
+        w.batch.dirty = True
+    except Exception:
+        _n3f_checked(a)
+
+
+def _unit(v):
+    v = float(v)
+    return 0.0 if v < 0.0 else (1.0 if v > 1.0 else v)     # NaN passes through
+
+
+def _byte(v):
+    v = float(v)
+    return 0.0 if v < 0.0 else (255.0 if v > 255.0 else v)
+
+
+def _fast_colour(slow, n, conv, k):
+    def c(a):
+        try:
+            if n == 3:
+                r, g, b = a
+                al = 255.0
+            else:
+                r, g, b, al = a
+                al = conv(al) * k
+            w = machine.current
+            st = w.st
+            if not st.rgb:
+                raise _Slow
+            st.colour = (conv(r) * k, conv(g) * k, conv(b) * k, al)
+            st.last_was_normal = False
+            if st.material:
+                st.colour_since_bind = True
+            w.batch.dirty = True
+        except Exception:
+            slow(a)
+    c.__name__ = slow.__name__
+    c.__doc__ = slow.__doc__
+    c.__wrapped__ = slow
+    return c
+
+
+c3f = _fast_colour(c3f, 3, _unit, 255.0)
+c4f = _fast_colour(c4f, 4, _unit, 255.0)
+c3i = _fast_colour(c3i, 3, _byte, 1.0)
+c4i = _fast_colour(c4i, 4, _byte, 1.0)
+c3s = _fast_colour(c3s, 3, _byte, 1.0)
+c4s = _fast_colour(c4s, 4, _byte, 1.0)

@@ -209,37 +209,38 @@ class VGX:
             self._flush(win)
         b.klass = klass
         b.open = (kind, call)
-        b.start = len(b.pos)
+        b.start = len(b.akey)
+        b.cap = b.start + config.MAX_POLYGON_VERTICES if kind == POLYGON else 1 << 62
 
     def end(self, win, kind, call):
         b = win.batch
         if b.open is None or b.open[0] != kind:
             inside = f"inside bgn{KIND_NAMES[b.open[0]]}" if b.open else "not inside any bgn call"
             fail(call, f"{inside}", f"end{KIND_NAMES[kind]} closes bgn{KIND_NAMES[kind]}")
-        n = len(b.pos) - b.start
+        n = len(b.akey) - b.start
         concave = kind == POLYGON and win.st.concave
         if n:
             b.prims.append((kind, b.start, n, concave))
         b.open = None
-        b.start = len(b.pos)
+        b.start = len(b.akey)
 
     def vertex(self, win, x, y, z, w, call):
         b = win.batch
         if b.open is None:
             fail(call, "vertex outside bgn/end", "call it between bgn* and end*")
-        if b.open[0] == POLYGON and len(b.pos) - b.start >= config.MAX_POLYGON_VERTICES:
+        if len(b.akey) >= b.cap:
             fail(call, f"more than {config.MAX_POLYGON_VERTICES} vertices in a polygon",
                  "GD_NVERTEX_POLY is 256")
         if b.dirty:
             b.record_attributes(win.st)
-        b.pos.append((x, y, z, w))
+        b.pos += (x, y, z, w)
         b.akey.append(b.cur)
 
     def swaptmesh(self, win):
         b = win.batch
         if b.open is None or b.open[0] != TMESH:
             fail("swaptmesh", "not inside bgntmesh", "call it between bgntmesh and endtmesh")
-        b.swaps.append(len(b.pos))
+        b.swaps.append(len(b.akey))
 
     def polyline_vertices(self, win, kind, pts, call):
         """A whole primitive from a point list (rect, poly, polf, ...)."""

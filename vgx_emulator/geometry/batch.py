@@ -37,9 +37,10 @@ class VertexBatch:
         self.reset()
 
     def reset(self):
-        self.pos = []
-        self.akey = []
-        self.attrs = []
+        self.pos = []               # flat x, y, z, w floats
+        self.akey = []              # per vertex: index into attrs
+        self.cap = 1 << 62          # vertex count at which the open polygon is full
+        self.attrs = []             # flat records of 9: normal, colour, flags, transform
         self.xforms = []
         self.prims = []
         self.swaps = []             # vertex indices with a swaptmesh before them
@@ -60,20 +61,22 @@ class VertexBatch:
             self.xf_dirty = False
         flags = (LAST_WAS_NORMAL if st.last_was_normal else 0) | \
                 (COLOUR_SINCE_BIND if st.colour_since_bind else 0)
-        self.attrs.append(st.normal + st.colour + (flags, len(self.xforms) - 1))
-        self.cur = len(self.attrs) - 1
+        self.attrs += st.normal + st.colour + (flags, len(self.xforms) - 1)
+        self.cur = len(self.attrs) // 9 - 1
         self.dirty = False
 
     def keep_open_primitive(self):
         """After a flush inside bgn/end: keep only the open primitive's vertices."""
-        pos = self.pos[self.start:]
+        pos = self.pos[4 * self.start:]
         akey = self.akey[self.start:]
         swaps = [s - self.start for s in self.swaps if s >= self.start]
         attrs, xforms, klass = self.attrs, self.xforms, self.klass
+        cap = self.cap - self.start
         self.reset()
+        self.cap = cap
         self.pos, self.akey, self.swaps = pos, akey, swaps
         self.attrs, self.xforms, self.klass = attrs, xforms, klass
-        self.cur = len(attrs) - 1
+        self.cur = len(attrs) // 9 - 1
         self.dirty = True
         self.xf_dirty = True
 
