@@ -12,6 +12,9 @@ from . import colormap as _colormap
 from . import constants as _constants
 from . import depth as _depth
 from . import events as _events
+from . import fragment as _fragment
+from . import pattern as _pattern
+from . import stencil as _stencil
 from . import lighting as _lighting
 from . import matrix as _matrix
 from . import pixels as _pixels
@@ -22,6 +25,9 @@ from .colormap import *      # noqa: F401,F403
 from .constants import *     # noqa: F401,F403
 from .depth import *         # noqa: F401,F403
 from .events import *        # noqa: F401,F403
+from .fragment import *      # noqa: F401,F403
+from .pattern import *       # noqa: F401,F403
+from .stencil import *       # noqa: F401,F403
 from .lighting import *      # noqa: F401,F403
 from .matrix import *        # noqa: F401,F403
 from .pixels import *        # noqa: F401,F403
@@ -32,4 +38,5 @@ from .window import *        # noqa: F401,F403
 __all__ = sorted(set(["GLError"] + _constants.__all__ + _types.__all__ + _window.__all__
                      + _matrix.__all__ + _primitives.__all__ + _lighting.__all__
                      + _depth.__all__ + _events.__all__ + _colormap.__all__
-                     + _pixels.__all__))
+                     + _pixels.__all__ + _fragment.__all__ + _pattern.__all__
+                     + _stencil.__all__))

@@ -19,10 +19,10 @@ from .events import INPUTCHANGE, REDRAW, EventQueue
 from .framebuffer import ZMAX, ZMIN, Framebuffer
 from .geometry import lighting, stack
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
-from .geometry.batch import CLASS_OF, VertexBatch
+from .geometry.batch import CLASS_OF, FILLED, VertexBatch
 from .raster import fragment
 from .raster.variants import RasterKey
-from .scan.spans import fill, fill_z
+from .scan.spans import fill, fill_pattern, fill_z
 from .scan.triangles import CULL_BACK, CULL_BOTH, CULL_FRONT, CULL_NONE
 from .state import WindowState
 
@@ -32,6 +32,8 @@ SRC_AUTO, SRC_FRONT, SRC_BACK, SRC_ZBUFFER = 0, 1, 2, 3
 
 _DUMMY_C = np.zeros((1, 1), np.uint32)
 _DUMMY_Z = np.zeros((1, 1), np.int32)
+_DUMMY_S = np.zeros((1, 1), np.uint8)
+_SOLID = np.ones((1, 1), np.uint8)
 
 
 class Window:
@@ -65,6 +67,7 @@ class VGX:
         self.colormap = display.default_colormap()
         self.defs = {lighting.DEFMATERIAL: {}, lighting.DEFLIGHT: {}, lighting.DEFLMODEL: {}}
         self.pref = {}
+        self.patterns = {}             # defpattern: index -> (size, bits (size, size) uint8)
         self.frame_hook = None         # runner: called at each frame end
         self.last_image = None         # what the last closed window showed
 
@@ -117,6 +120,8 @@ class VGX:
         win.fb.configure(st.double, st.req_stencil, st.req_accum)
         st.colour = (0.0, 0.0, 0.0, 0.0)
         st.zwritemask = 0xFFFFFF
+        st.swritemask = 0xFF
+        st.cmask = 0xFFFFFFFF
         st.front_enabled = not st.double
         st.back_enabled = st.double
 
@@ -145,6 +150,10 @@ class VGX:
         if self.current is not None:
             self._flush(self.current)
 
+    def flush_all(self):
+        for win in self.windows.values():
+            self._flush(win)
+
     def _flush(self, win):
         b = win.batch
         if not b.prims:
@@ -153,7 +162,7 @@ class VGX:
         vp = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
         if vp is not None:
             work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport)
-            key, planes, ip = self._raster_setup(win, work)
+            key, planes, ip = self._raster_setup(win, work, work.klass == FILLED)
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
             scan.scan_batch(work, key, planes, ip, cull, not st.subpixel)
@@ -174,18 +183,30 @@ class VGX:
             out.append(fb.front)
         return out
 
-    def _raster_setup(self, win, work):
+    def _raster_setup(self, win, work, filled=True):
+        """The RasterKey, planes tuple and parameter vector of a pass."""
         st, fb = win.st, win.fb
         targets = self._targets(win)
         ztest = st.zbuffer
         zmask = st.zwritemask & 0xFFFFFF
-        key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=len(targets) > 0,
+        full = 0xFFFFFFFF if st.rgb else 0xFFF
+        cmask_val = st.cmask & full
+        color = len(targets) > 0 and cmask_val != 0
+        stencil = st.stencil_on and fb.stencil is not None
+        pat = self.patterns.get(st.pattern) if filled and st.pattern else None
+        logic = color and st.logicop != 3
+        key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=color,
                         gouraud=st.gouraud, cmode=not st.rgb,
-                        twoside=bool(work.twoside))
+                        twoside=bool(work is not None and work.twoside),
+                        stencil=stencil,
+                        blend=color and st.rgb and not logic and st.blendfunc != (1, 0),
+                        logic=logic, atest=st.rgb and st.afunc[1] != 7,
+                        pattern=pat is not None, cmask=color and cmask_val != full)
         zb = fb.ensure_z() if ztest else _DUMMY_Z
         c0 = targets[0] if targets else _DUMMY_C
         c1 = targets[1] if len(targets) > 1 else _DUMMY_C
-        planes = (c0, c1, zb)
+        planes = (c0, c1, zb, fb.stencil if stencil else _DUMMY_S,
+                  pat[1] if pat is not None else _SOLID)
         sc = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
         ip = np.zeros(fragment.NPARAMS, np.int64)
         ip[fragment.P_SX0], ip[fragment.P_SX1], ip[fragment.P_SY0], ip[fragment.P_SY1] = sc
@@ -195,6 +216,20 @@ class VGX:
         ip[fragment.P_ZLO] = min(near, far)
         ip[fragment.P_ZHI] = max(near, far)
         ip[fragment.P_NCB] = len(targets)
+        smax = (1 << fb.stencil_planes) - 1
+        ref, func, mask, sfail, spass, szpass = st.stencil
+        ip[fragment.P_SFUNC] = func
+        ip[fragment.P_SREF] = min(ref, smax)             # Decision 2: clamped
+        ip[fragment.P_SMASK] = mask & smax
+        ip[fragment.P_SFAIL], ip[fragment.P_SPASS], ip[fragment.P_SZPASS] = sfail, spass, szpass
+        ip[fragment.P_SWMASK] = st.swritemask & smax
+        ip[fragment.P_SMAX] = smax
+        ip[fragment.P_CMASK] = cmask_val
+        ip[fragment.P_BSRC], ip[fragment.P_BDST] = st.blendfunc
+        ip[fragment.P_AREF], ip[fragment.P_AFUNC] = st.afunc
+        ip[fragment.P_LOGICOP] = st.logicop
+        ip[fragment.P_PATSIZE] = pat[0] if pat is not None else 1
+        ip[fragment.P_ORGX], ip[fragment.P_ORGY] = win.origin
         return key, planes, ip
 
     # ------------------------------------------------------------------
@@ -333,13 +368,34 @@ class VGX:
         return _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
 
     def clear(self, win):
+        """clear(3G): current colour into viewport ∩ scrmask of every enabled
+        colour buffer, honouring the pattern and the colour writemask only."""
         self._flush(win)
         r = self.clear_rect(win)
         if r is None:
             return
-        word = self.colour_word(win.st, win.st.colour)
+        st = win.st
+        word = np.uint32(self.colour_word(st, st.colour))
+        mask = np.uint32(st.cmask & (0xFFFFFFFF if st.rgb else 0xFFF))
+        pat = self.patterns.get(st.pattern) if st.pattern else None
         for t in self._targets(win):
-            fill(t, r[0], r[1], r[2], r[3], np.uint32(word), np.uint32(0xFFFFFFFF))
+            if pat is None:
+                fill(t, r[0], r[1], r[2], r[3], word, mask)
+            else:
+                fill_pattern(t, r[0], r[1], r[2], r[3], word, mask, pat[1], pat[0],
+                             win.origin[0], win.origin[1])
+
+    def sclear(self, win, sval):
+        """sclear(3G): stencil := sval within the planes, under swritemask,
+        over viewport ∩ scrmask; the pattern does not apply."""
+        self._flush(win)
+        r = self.clear_rect(win)
+        fb = win.fb
+        if r is None or fb.stencil is None:
+            return
+        smax = (1 << fb.stencil_planes) - 1
+        fill(fb.stencil, r[0], r[1], r[2], r[3], np.uint8(sval & smax),
+             np.uint8(win.st.swritemask & smax))
 
     def zclear(self, win):
         self._flush(win)

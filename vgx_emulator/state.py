@@ -50,5 +50,16 @@ class WindowState:
         self.zwritemask = 0xFFFFFF
         self.front_enabled = True
         self.back_enabled = False
+        # stencil(3G): enable, ref, func, mask, fail, pass, zpass; swritemask
+        self.stencil_on = False
+        self.stencil = (0, 7, 0xFF, 0, 0, 0)      # ref, SF_ALWAYS, mask, KEEP x3
+        self.swritemask = 0xFF
+        # colour writemask: wmpack/RGBwritemask (RGB) or writemask (cmode)
+        self.cmask = 0xFFFFFFFF
+        self.blendfunc = (1, 0)                    # BF_ONE, BF_ZERO (replace)
+        self.afunc = (0, 7)                        # ref, AF_ALWAYS
+        self.logicop = 3                           # LO_SRC
+        self.dither = True
+        self.pattern = 0                           # setpattern index; 0 = solid
         # graphics position (move/draw) and character position
         self.gpos = None

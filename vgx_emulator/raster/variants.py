@@ -30,4 +30,5 @@ def _source_hash():
 KERNEL_SOURCE_HASH = _source_hash()
 
 #: Fields of the raster key, in kernel-factory argument order.
-RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside")
+RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside "
+                                    "stencil blend logic atest pattern cmask")

@@ -11,7 +11,9 @@ IRIS GL rules (reference 1.5, [M-PG 15.1.2]):
 - z and colour are interpolated along the line (Gouraud) or taken from the
   segment's last vertex (FLAT, Decision 6).
 
-A point fills the pixel whose centre is nearest.  Fragments then go through
+A point fills the pixel whose centre is nearest.  Patterns do not apply to
+lines and points (defpattern(3G)), so their kernels never run the pattern
+stage.  Fragments then go through
 the same per-fragment operations as triangles (:mod:`raster.fragment`).
 """
 import math
@@ -39,7 +41,8 @@ def point_kernel(key):
     return k
 
 
-def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside):
+def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
+                      stencil, blend, logic, atest, pattern, cmask):
     src_hash = KERNEL_SOURCE_HASH
 
     @njit
@@ -94,13 +97,14 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside):
                     g = FLAT[s, 1]
                     b = FLAT[s, 2]
                     a = FLAT[s, 3]
-                fragment.fragment(ztest, zwrite, color, cmode, x, y, z, r, g, b, a,
-                                  planes, ip)
+                fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic,
+                                  atest, False, cmask, x, y, z, r, g, b, a, planes, ip)
 
     return draw_lines
 
 
-def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside):
+def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
+                       stencil, blend, logic, atest, pattern, cmask):
     src_hash = KERNEL_SOURCE_HASH
 
     @njit
@@ -114,8 +118,9 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside):
                 continue
             if y < ip[fragment.P_SY0] or y > ip[fragment.P_SY1]:
                 continue
-            fragment.fragment(ztest, zwrite, color, cmode, x, y, P[i, 2],
-                              P[i, 3], P[i, 4], P[i, 5], P[i, 6], planes, ip)
+            fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest,
+                              False, cmask, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
+                              P[i, 6], planes, ip)
 
     return draw_points
 

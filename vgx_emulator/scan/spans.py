@@ -22,3 +22,14 @@ def fill_z(plane, x0, x1, y0, y1, value, mask):
             if v & 0x800000:
                 v -= 0x1000000
             plane[y, x] = v
+
+
+@njit
+def fill_pattern(plane, x0, x1, y0, y1, value, mask, pat, n, orgx, orgy):
+    """fill() where the screen-aligned pattern bit is 1 (clear under setpattern)."""
+    keep = ~mask
+    for y in range(y0, y1 + 1):
+        py = (y + orgy) % n
+        for x in range(x0, x1 + 1):
+            if pat[py, (x + orgx) % n]:
+                plane[y, x] = (plane[y, x] & keep) | (value & mask)

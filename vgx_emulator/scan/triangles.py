@@ -103,7 +103,8 @@ def triangle_kernel(key):
     return k
 
 
-def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside):
+def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
+                          stencil, blend, logic, atest, pattern, cmask):
     src_hash = KERNEL_SOURCE_HASH      # closure constant: keys the disk cache
     band_rows = config.BAND_ROWS
 
@@ -176,7 +177,8 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside):
                                 g = fg
                                 bb = fb
                                 al = fa
-                            fragment.fragment(ztest, zwrite, color, cmode,
+                            fragment.fragment(ztest, zwrite, color, cmode, stencil,
+                                              blend, logic, atest, pattern, cmask,
                                               x, y, z, r, g, bb, al, planes, ip)
                         e0 += sx
                         e1 += sx1_
