@@ -8,6 +8,7 @@ the runner) lives there.
 """
 from vgx_emulator.errors import GLError
 
+from . import accum as _accum
 from . import colormap as _colormap
 from . import constants as _constants
 from . import depth as _depth
@@ -21,6 +22,7 @@ from . import pixels as _pixels
 from . import primitives as _primitives
 from . import types as _types
 from . import window as _window
+from .accum import *         # noqa: F401,F403
 from .colormap import *      # noqa: F401,F403
 from .constants import *     # noqa: F401,F403
 from .depth import *         # noqa: F401,F403
@@ -39,4 +41,4 @@ __all__ = sorted(set(["GLError"] + _constants.__all__ + _types.__all__ + _window
                      + _matrix.__all__ + _primitives.__all__ + _lighting.__all__
                      + _depth.__all__ + _events.__all__ + _colormap.__all__
                      + _pixels.__all__ + _fragment.__all__ + _pattern.__all__
-                     + _stencil.__all__))
+                     + _stencil.__all__ + _accum.__all__))

@@ -6,7 +6,8 @@ from vgx_emulator.errors import fail
 from . import constants as K
 from ._current import glcall, integer, machine, token, win
 
-__all__ = ["readsource", "lrectread"]
+__all__ = ["readsource", "lrectread", "rectread", "lrectwrite", "rectwrite", "rectcopy",
+           "rectzoom"]
 
 _SRC = {K.SRC_AUTO: "SRC_AUTO", K.SRC_FRONT: "SRC_FRONT", K.SRC_BACK: "SRC_BACK",
         K.SRC_ZBUFFER: "SRC_ZBUFFER"}
@@ -45,3 +46,77 @@ def lrectread(x1, y1, x2, y2, parray=None):
         return block if w.readsource == K.SRC_ZBUFFER else block.astype(np.uint32)
     parray.reshape(-1)[...] = block.reshape(-1).view(np.uint32).astype(parray.dtype, copy=False)
     return n
+
+
+@glcall
+def rectread(x1, y1, x2, y2, parray=None):
+    """rectread(3G): as lrectread with 16-bit Colorindex words (uint16)."""
+    w = win("rectread")
+    x1, y1, x2, y2 = (integer("rectread", v) for v in (x1, y1, x2, y2))
+    if x2 < x1 or y2 < y1:
+        fail("rectread", f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    n = (x2 - x1 + 1) * (y2 - y1 + 1)
+    if parray is not None and (not isinstance(parray, np.ndarray) or parray.size != n):
+        fail("rectread", "parray is not a numpy array of (x2-x1+1)*(y2-y1+1) elements",
+             f"pass {n} elements or nothing")
+    block = (machine.lrectread(w, x1, y1, x2, y2, w.readsource).astype(np.int64)
+             & 0xFFFF).astype(np.uint16)
+    if parray is None:
+        return block
+    parray.reshape(-1)[...] = block.reshape(-1)
+    return n
+
+
+def _write(call, x1, y1, x2, y2, parray, dtype):
+    w = win(call)
+    x1, y1, x2, y2 = (integer(call, v) for v in (x1, y1, x2, y2))
+    if x2 < x1 or y2 < y1:
+        fail(call, f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    h, wd = y2 - y1 + 1, x2 - x1 + 1
+    try:
+        a = np.asarray(parray)
+        words = (a.astype(np.int64) & (0xFFFFFFFF if dtype == np.uint32 else 0xFFFF))
+    except (TypeError, ValueError):
+        fail(call, "parray is not an array of integers", f"{h * wd} pixel words")
+    if words.size != h * wd:
+        fail(call, f"parray has {words.size} elements", f"(x2-x1+1)*(y2-y1+1) = {h * wd}")
+    machine.write_pixels(w, x1, y1, words.reshape(h, wd).astype(np.uint32), w.st.zoom)
+
+
+@glcall
+def lrectwrite(x1, y1, x2, y2, parray):
+    """lrectwrite(3G): write (x2-x1+1)*(y2-y1+1) packed pixels, left to right
+    then bottom to top, lower-left at (x1, y1), zoomed by rectzoom.
+    Writemasks, blend/logicop, afunction and scrmask apply; no z, stencil or
+    pattern (Decision 11)."""
+    _write("lrectwrite", x1, y1, x2, y2, parray, np.uint32)
+
+
+@glcall
+def rectwrite(x1, y1, x2, y2, parray):
+    """rectwrite(3G): as lrectwrite with 16-bit Colorindex words."""
+    _write("rectwrite", x1, y1, x2, y2, parray, np.uint16)
+
+
+@glcall
+def rectcopy(x1, y1, x2, y2, newx, newy):
+    """rectcopy(3G): copy from readsource to the enabled buffers with its
+    lower-left at (newx, newy), zoomed by rectzoom."""
+    w = win("rectcopy")
+    x1, y1, x2, y2, nx, ny = (integer("rectcopy", v) for v in (x1, y1, x2, y2, newx, newy))
+    if x2 < x1 or y2 < y1:
+        fail("rectcopy", f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    block = machine.lrectread(w, x1, y1, x2, y2, w.readsource).view(np.uint32)
+    machine.write_pixels(w, nx, ny, block.copy(), w.st.zoom)
+
+
+@glcall
+def rectzoom(xfactor, yfactor):
+    """rectzoom(3G): pixel replication (> 1) or decimation (< 1) factors for
+    lrectwrite, rectwrite and rectcopy; default 1.0."""
+    w = win("rectzoom")
+    xf = float(xfactor)
+    yf = float(yfactor)
+    if not (xf > 0 and yf > 0 and xf < 1e4 and yf < 1e4):
+        fail("rectzoom", f"factors ({xfactor}, {yfactor})", "positive and finite")
+    w.st.zoom = (xf, yf)

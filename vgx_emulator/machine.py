@@ -424,6 +424,28 @@ class VGX:
         return (a << 24) | (b << 16) | (g << 8) | r
 
     # ------------------------------------------------------------------
+    # accumulation buffer (reference 10)
+    def acbuf(self, win, op, value):
+        from .framebuffer import accum as A
+        self._flush(win)
+        r = self.clear_rect(win)
+        if r is None:
+            return
+        st, fb = win.st, win.fb
+        if op == A.AC_RETURN:
+            v = min(max(value, 0.0), 1.0)
+            mask = st.cmask & (0xFFFFFFFF if st.rgb else 0xFFF)
+            for t in self._targets(win):
+                A.give_back(fb.accum, t, v, mask, not st.rgb, r[0], r[1], r[2], r[3])
+            return
+        if op in (A.AC_ACCUMULATE, A.AC_CLEAR_ACCUMULATE):
+            value = min(max(value, -256.0), 256.0)
+            src = self.read_bank(win, win.readsource)
+        else:
+            src = _DUMMY_C
+        A.accumulate(fb.accum, src, op, float(value), r[0], r[1], r[2], r[3])
+
+    # ------------------------------------------------------------------
     # reading pixels (reference 11)
     def read_bank(self, win, source):
         fb = win.fb
@@ -446,6 +468,18 @@ class VGX:
         if xa <= xb and ya <= yb:
             out[ya - y1:yb - y1 + 1, xa - x1:xb - x1 + 1] = bank[ya:yb + 1, xa:xb + 1]
         return out
+
+    def write_pixels(self, win, x1, y1, words, zoom):
+        """lrectwrite/rectwrite: words (h, w), row 0 at y1 (Decision 11)."""
+        from .scan.spans import pixel_kernel
+        self._flush(win)
+        key, planes, ip = self._raster_setup(win, None, filled=False)
+        key = key._replace(ztest=False, zwrite=False, stencil=False, pattern=False,
+                           gouraud=False, twoside=False)
+        if not key.color:
+            return
+        pixel_kernel(key)(np.ascontiguousarray(words), x1, y1, float(zoom[0]),
+                          float(zoom[1]), planes, ip)
 
     # ------------------------------------------------------------------
     # display

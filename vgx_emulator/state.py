@@ -61,5 +61,6 @@ class WindowState:
         self.logicop = 3                           # LO_SRC
         self.dither = True
         self.pattern = 0                           # setpattern index; 0 = solid
+        self.zoom = (1.0, 1.0)                     # rectzoom
         # graphics position (move/draw) and character position
         self.gpos = None

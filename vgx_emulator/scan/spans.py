@@ -1,6 +1,10 @@
 """Axis-aligned spans: clear, czclear, zclear (and later rectf fast paths,
 lrectwrite, rectcopy).  The rectangle is inclusive and already clipped to
 viewport ∩ scrmask ∩ window by the caller."""
+import math
+
+import numpy as np
+
 from ..jit import njit
 
 
@@ -33,3 +37,53 @@ def fill_pattern(plane, x0, x1, y0, y1, value, mask, pat, n, orgx, orgy):
         for x in range(x0, x1 + 1):
             if pat[py, (x + orgx) % n]:
                 plane[y, x] = (plane[y, x] & keep) | (value & mask)
+
+
+_pixel_kernels = {}
+
+
+def pixel_kernel(key):
+    """lrectwrite/rectwrite/rectcopy writer for a raster key (Decision 11:
+    afunction, blend/logicop and writemasks apply; no z, stencil or pattern)."""
+    k = _pixel_kernels.get(key)
+    if k is None:
+        k = _pixel_kernels[key] = _make_pixel_kernel(*key)
+    return k
+
+
+def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
+                       stencil, blend, logic, atest, pattern, cmask):
+    from ..raster import fragment as F
+    from ..raster.variants import KERNEL_SOURCE_HASH
+    src_hash = KERNEL_SOURCE_HASH
+
+    @njit
+    def write_pixels(words, x1, y1, xzoom, yzoom, planes, ip):
+        """words: (h, w) source rows, row 0 at the bottom; lower-left at (x1, y1)."""
+        _ = src_hash
+        h, w = words.shape
+        xe = x1 + int(math.ceil(w * xzoom)) - 1
+        ye = y1 + int(math.ceil(h * yzoom)) - 1
+        for y in range(max(y1, ip[F.P_SY0]), min(ye, ip[F.P_SY1]) + 1):
+            sy = int((y - y1) / yzoom)
+            if sy >= h:
+                continue
+            for x in range(max(x1, ip[F.P_SX0]), min(xe, ip[F.P_SX1]) + 1):
+                sx = int((x - x1) / xzoom)
+                if sx >= w:
+                    continue
+                v = np.int64(words[sy, sx])
+                if cmode:
+                    r = float(v & 0xFFF)
+                    g = 0.0
+                    b = 0.0
+                    a = 0.0
+                else:
+                    r = float(v & 0xFF)
+                    g = float((v >> 8) & 0xFF)
+                    b = float((v >> 16) & 0xFF)
+                    a = float((v >> 24) & 0xFF)
+                F.fragment(False, False, color, cmode, False, blend, logic, atest, False,
+                           cmask, x, y, 0.0, r, g, b, a, planes, ip)
+
+    return write_pixels
