@@ -18,6 +18,7 @@ from . import pattern as _pattern
 from . import stencil as _stencil
 from . import lighting as _lighting
 from . import matrix as _matrix
+from . import objects as _objects
 from . import pixels as _pixels
 from . import primitives as _primitives
 from . import types as _types
@@ -32,6 +33,7 @@ from .pattern import *       # noqa: F401,F403
 from .stencil import *       # noqa: F401,F403
 from .lighting import *      # noqa: F401,F403
 from .matrix import *        # noqa: F401,F403
+from .objects import *       # noqa: F401,F403
 from .pixels import *        # noqa: F401,F403
 from .primitives import *    # noqa: F401,F403
 from .types import *         # noqa: F401,F403
@@ -41,4 +43,4 @@ __all__ = sorted(set(["GLError"] + _constants.__all__ + _types.__all__ + _window
                      + _matrix.__all__ + _primitives.__all__ + _lighting.__all__
                      + _depth.__all__ + _events.__all__ + _colormap.__all__
                      + _pixels.__all__ + _fragment.__all__ + _pattern.__all__
-                     + _stencil.__all__ + _accum.__all__))
+                     + _stencil.__all__ + _accum.__all__ + _objects.__all__))

@@ -24,6 +24,8 @@ def glcall(fn=None, *, inside=False):
             @functools.wraps(f)
             def call(*args):
                 try:
+                    if machine.recording is not None and name not in _immediate():
+                        return _record(name, call, args)
                     return f(*args)
                 except GLError as e:
                     if is_lenient():
@@ -34,6 +36,8 @@ def glcall(fn=None, *, inside=False):
             @functools.wraps(f)
             def call(*args):
                 try:
+                    if machine.recording is not None and name not in _immediate():
+                        return _record(name, call, args)
                     w = machine.current
                     if w is not None and w.batch.open is not None:
                         fail(name, f"not allowed inside bgn{_kind(w)}",
@@ -48,6 +52,16 @@ def glcall(fn=None, *, inside=False):
         call.__wrapped__ = f
         return call
     return wrap(fn) if fn is not None else wrap
+
+
+def _immediate():
+    from .objects import IMMEDIATE
+    return IMMEDIATE
+
+
+def _record(name, fn, args):
+    from .objects import record
+    record(name, fn, args)
 
 
 def _kind(w):

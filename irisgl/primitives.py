@@ -390,6 +390,8 @@ def n3f(a):
     """n3f(3G): the current normal for the following vertices."""
     try:
         x, y, z = a
+        if machine.recording is not None:
+            raise _Slow
         w = machine.current
         st = w.st
         st.normal = (float(x), float(y), float(z))
@@ -420,7 +422,7 @@ def _fast_colour(slow, n, conv, k):
                 al = conv(al) * k
             w = machine.current
             st = w.st
-            if not st.rgb:
+            if not st.rgb or machine.recording is not None:
                 raise _Slow
             st.colour = (conv(r) * k, conv(g) * k, conv(b) * k, al)
             st.last_was_normal = False

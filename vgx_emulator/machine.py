@@ -67,6 +67,8 @@ class VGX:
         self.colormap = display.default_colormap()
         self.defs = {lighting.DEFMATERIAL: {}, lighting.DEFLIGHT: {}, lighting.DEFLMODEL: {}}
         self.pref = {}
+        self.objects = {}              # display lists: Object -> irisgl.objects._Object
+        self.recording = None          # the Object being recorded, or None
         self.patterns = {}             # defpattern: index -> (size, bits (size, size) uint8)
         self.frame_hook = None         # runner: called at each frame end
         self.last_image = None         # what the last closed window showed
@@ -143,7 +145,7 @@ class VGX:
     def state_change(self, win=None):
         """Flush primitives already issued before a state change."""
         win = win or self.current
-        if win is not None and win.batch.prims:
+        if win is not None and len(win.batch):
             self._flush(win)
 
     def flush(self):
@@ -156,7 +158,7 @@ class VGX:
 
     def _flush(self, win):
         b = win.batch
-        if not b.prims:
+        if not len(b):
             return
         st = win.st
         vp = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
@@ -240,7 +242,7 @@ class VGX:
             fail(call, f"already inside bgn{KIND_NAMES[b.open[0]]}",
                  f"close it with end{KIND_NAMES[b.open[0]]} first")
         klass = CLASS_OF[kind]
-        if b.prims and b.klass != klass:
+        if len(b) and b.klass != klass:
             self._flush(win)
         b.klass = klass
         b.open = (kind, call)

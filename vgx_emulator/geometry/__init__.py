@@ -106,14 +106,11 @@ def _light(st, defs, eye4, attrs, xf, xforms):
     return col, back
 
 
-def _assemble_filled(batch, pos, concave_prims):
+def _assemble_filled(batch, pos, table):
     """Triangles of every filled primitive, in submission order."""
-    prims = batch.prims
-    kinds = np.array([p[0] for p in prims], np.int64)
-    starts = np.array([p[1] for p in prims], np.int64)
-    counts = np.array([p[2] for p in prims], np.int64)
-    concave = np.array([p[3] for p in prims], bool)
-    seq = np.arange(len(prims))
+    kinds, starts, counts = table[:, 0], table[:, 1], table[:, 2]
+    concave = table[:, 3] != 0
+    seq = np.arange(len(table))
     parts, provs, orders = [], [], []
     sel = (kinds == POLYGON) & ~concave
     if sel.any():
@@ -163,9 +160,10 @@ def process_batch(batch, st, defs, snap, viewport_rect):
             & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))
     gx, gy = viewport.guard_factors(viewport_rect)
     work = WindowWork(klass=batch.klass, twoside=back is not None)
+    table = batch.prim_table()
     near_far = st.depth_range
     if batch.klass == FILLED:
-        tris, prov = _assemble_filled(batch, pos, None)
+        tris, prov = _assemble_filled(batch, pos, table)
         drop = bad[tris].any(axis=1) | bad[prov]
         work.dropped = int(drop.sum())
         tris, prov = tris[~drop], prov[~drop]
@@ -197,9 +195,8 @@ def process_batch(batch, st, defs, snap, viewport_rect):
         work.C = np.ascontiguousarray(verts[:, 4:8])
         work.CB = np.ascontiguousarray(verts[:, 8:12]) if back is not None else work.C
     elif batch.klass == LINES:
-        starts = np.array([p[1] for p in batch.prims], np.int64)
-        counts = np.array([p[2] for p in batch.prims], np.int64)
-        closed = np.array([p[0] == CLOSEDLINE for p in batch.prims], bool)
+        starts, counts = table[:, 1], table[:, 2]
+        closed = table[:, 0] == CLOSEDLINE
         segs, prov = assemble.polylines(starts, counts, closed)
         drop = bad[segs].any(axis=1)
         work.dropped = int(drop.sum())
@@ -209,8 +206,7 @@ def process_batch(batch, st, defs, snap, viewport_rect):
         work.seg1 = _window_rows(p1, viewport_rect, near_far, snap)
         work.segflat = np.ascontiguousarray(col[prov[kept]])
     else:
-        idx = np.array([p[1] + k for p in batch.prims for k in range(p[2])], np.int64) \
-            if len(batch.prims) < 64 else _point_indices(batch)
+        idx = assemble._ranges(table[:, 1], table[:, 2])[0]
         drop = bad[idx]
         work.dropped = int(drop.sum())
         idx = idx[~drop]
@@ -222,12 +218,6 @@ def process_batch(batch, st, defs, snap, viewport_rect):
         warn("v*/n3f/c*", f"{work.dropped} primitive(s) with a non-finite vertex, "
              "normal, colour or transformed position dropped")
     return work
-
-
-def _point_indices(batch):
-    starts = np.array([p[1] for p in batch.prims], np.int64)
-    counts = np.array([p[2] for p in batch.prims], np.int64)
-    return assemble._ranges(starts, counts)[0]
 
 
 def _window_rows(rows, vp, near_far, snap):

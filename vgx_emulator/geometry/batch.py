@@ -42,7 +42,8 @@ class VertexBatch:
         self.cap = 1 << 62          # vertex count at which the open polygon is full
         self.attrs = []             # flat records of 9: normal, colour, flags, transform
         self.xforms = []
-        self.prims = []
+        self.prims = []             # (kind, start, count, concave) of immediate primitives
+        self.blocks = []            # earlier primitives as (P, 4) int64 arrays, in order
         self.swaps = []             # vertex indices with a swaptmesh before them
         self.klass = None
         self.start = 0
@@ -51,7 +52,24 @@ class VertexBatch:
         self.xf_dirty = True        # matrices changed since the last Transform
 
     def __len__(self):
-        return len(self.prims)
+        return len(self.prims) + sum(len(b) for b in self.blocks)
+
+    def add_block(self, table):
+        """Append primitives (P, 4) [kind, start, count, concave] as one block
+        (display-list replay), after the immediate ones already recorded."""
+        if self.prims:
+            self.blocks.append(np.array(self.prims, np.int64).reshape(-1, 4))
+            self.prims = []
+        self.blocks.append(table)
+
+    def prim_table(self):
+        """Every primitive of the batch in submission order, (P, 4) int64."""
+        parts = list(self.blocks)
+        if self.prims:
+            parts.append(np.array(self.prims, np.int64).reshape(-1, 4))
+        if not parts:
+            return np.zeros((0, 4), np.int64)
+        return parts[0] if len(parts) == 1 else np.concatenate(parts)
 
     def record_attributes(self, st):
         """Make the attribute record for the following vertices."""

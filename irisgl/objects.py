@@ -1,0 +1,217 @@
+"""Display lists: makeobj, closeobj, callobj, genobj, isobj, delobj, editobj,
+maketag, gentag, istag, objreplace, objinsert, objdelete (reference 12).
+
+While an object is open, calls are recorded instead of executed, except the
+queries and immediate-only calls listed in ``IMMEDIATE`` ([S] where the
+reference leaves it open: every ``get*`` query, readers, window and
+configuration calls, defpattern, mapcolor, the event queue and the object
+calls themselves run immediately).  ``callobj`` replays; geometry is replayed
+as arrays (see vgx_emulator/objects.py).  Editing: ``editobj`` reopens an
+object with the edit point at its end; ``objreplace(t)`` replaces what
+follows tag t up to the next tag, ``objinsert(t)`` inserts after tag t,
+``objdelete(t1, t2)`` removes what lies between the two tags, and
+``closeobj`` ends the editing.
+"""
+from vgx_emulator import objects as O
+from vgx_emulator.errors import fail, warn
+
+from . import constants as K
+from ._current import glcall, integer, machine, win
+
+__all__ = ["makeobj", "closeobj", "callobj", "genobj", "isobj", "delobj", "editobj",
+           "maketag", "gentag", "istag", "objreplace", "objinsert", "objdelete", "getopenobj"]
+
+IMMEDIATE = {
+    "makeobj", "closeobj", "genobj", "isobj", "delobj", "editobj", "gentag", "istag",
+    "objreplace", "objinsert", "objdelete", "maketag", "getopenobj",
+    "winopen", "winclose", "winset", "winget", "prefsize", "prefposition", "keepaspect",
+    "foreground", "noport", "winconstraints", "gbegin", "RGBmode", "cmode", "doublebuffer",
+    "singlebuffer", "stensize", "acsize", "zbsize", "gconfig", "gexit", "ginit", "greset",
+    "swapbuffers", "gflush", "finish", "defpattern", "mapcolor", "qdevice", "unqdevice",
+    "qenter", "qreset", "qread", "qtest", "isqueued", "tie", "readsource", "lrectread",
+    "rectread", "getgdesc", "gRGBcolor", "lgetdepth"}
+
+
+class _Object:
+    __slots__ = ("items", "ops", "cursor")
+
+    def __init__(self):
+        self.items = []
+        self.ops = []
+        self.cursor = 0
+
+
+def record(name, fn, args):
+    """Called by the glcall wrapper while an object is open."""
+    rec = machine.recording
+    obj = machine.objects[rec]
+    obj.items.insert(obj.cursor, ("call", name, fn, args))
+    obj.cursor += 1
+
+
+def _obj_id(call, obj):
+    o = integer(call, obj, "object")
+    if not 0 < o <= 0x7FFFFFFF:
+        fail(call, f"object {o}", "a positive Object number")
+    return o
+
+
+@glcall
+def makeobj(obj):
+    """makeobj(3G): start recording into obj (its old contents are deleted)."""
+    o = _obj_id("makeobj", obj)
+    if machine.recording is not None:
+        fail("makeobj", f"object {machine.recording} is still open", "closeobj first")
+    machine.objects[o] = _Object()
+    machine.recording = o
+
+
+@glcall
+def editobj(obj):
+    """editobj(3G): reopen obj for editing, the edit point at its end."""
+    o = _obj_id("editobj", obj)
+    if machine.recording is not None:
+        fail("editobj", f"object {machine.recording} is still open", "closeobj first")
+    if o not in machine.objects:
+        fail("editobj", f"object {o} is not defined", "makeobj it first")
+    ob = machine.objects[o]
+    ob.cursor = len(ob.items)
+    machine.recording = o
+
+
+@glcall
+def closeobj():
+    """closeobj(3G): end recording; the object's geometry is packed for replay."""
+    if machine.recording is None:
+        fail("closeobj", "no object is open", "makeobj or editobj first")
+    ob = machine.objects[machine.recording]
+    ob.ops = O.compile_items(ob.items)
+    machine.recording = None
+
+
+@glcall
+def getopenobj():
+    return machine.recording if machine.recording is not None else -1
+
+
+@glcall
+def genobj():
+    """genobj(3G): an object number not in use."""
+    o = max(machine.objects, default=0) + 1
+    while o in machine.objects:
+        o += 1
+    return o
+
+
+@glcall
+def isobj(obj):
+    return int(integer("isobj", obj, "object") in machine.objects)
+
+
+@glcall
+def delobj(obj):
+    """delobj(3G): free obj (an undefined object is ignored)."""
+    o = integer("delobj", obj, "object")
+    if machine.recording == o:
+        fail("delobj", f"object {o} is open", "closeobj first")
+    machine.objects.pop(o, None)
+
+
+def _replay(obj, depth):
+    if depth > O.MAX_DEPTH:
+        fail("callobj", f"objects nested deeper than {O.MAX_DEPTH}", "no recursive objects")
+    ob = machine.objects.get(obj)
+    if ob is None:
+        warn("callobj", f"object {obj} is not defined; nothing drawn")
+        return
+    w = machine.current
+    for op in ob.ops:
+        if op[0] == "run":
+            if w is not None and O.replay_run(machine, w, op[1]):
+                continue
+            for _, fn, a in op[2]:
+                fn(*a)
+        elif op[1] is callobj:
+            _replay(integer("callobj", op[2][0], "object"), depth + 1)
+        else:
+            op[1](*op[2])
+
+
+@glcall
+def callobj(obj):
+    """callobj(3G): execute obj (objects may call objects)."""
+    win("callobj")
+    _replay(integer("callobj", obj, "object"), 0)
+
+
+@glcall
+def maketag(t):
+    """maketag(3G): a tag at the edit point of the open object."""
+    if machine.recording is None:
+        fail("maketag", "no object is open", "makeobj or editobj first")
+    ob = machine.objects[machine.recording]
+    ob.items.insert(ob.cursor, ("tag", integer("maketag", t, "tag")))
+    ob.cursor += 1
+
+
+def _tag_index(call, t):
+    if machine.recording is None:
+        fail(call, "no object is being edited", "editobj first")
+    ob = machine.objects[machine.recording]
+    t = integer(call, t, "tag")
+    if t == K.STARTTAG:
+        return ob, -1
+    if t == K.ENDTAG:
+        return ob, len(ob.items)
+    for i, it in enumerate(ob.items):
+        if it[0] == "tag" and it[1] == t:
+            return ob, i
+    fail(call, f"tag {t} is not in object {machine.recording}", "use a tag made by maketag")
+
+
+@glcall
+def gentag():
+    ob = machine.objects.get(machine.recording) if machine.recording else None
+    used = {it[1] for it in ob.items if it[0] == "tag"} if ob else set()
+    t = 1
+    while t in used:
+        t += 1
+    return t
+
+
+@glcall
+def istag(t):
+    if machine.recording is None:
+        return 0
+    ob = machine.objects[machine.recording]
+    return int(any(it[0] == "tag" and it[1] == t for it in ob.items))
+
+
+@glcall
+def objinsert(t):
+    """objinsert(3G): the edit point moves just after tag t."""
+    ob, i = _tag_index("objinsert", t)
+    ob.cursor = i + 1
+
+
+@glcall
+def objreplace(t):
+    """objreplace(3G): delete what follows tag t up to the next tag; new calls
+    go there."""
+    ob, i = _tag_index("objreplace", t)
+    j = i + 1
+    while j < len(ob.items) and ob.items[j][0] != "tag":
+        j += 1
+    del ob.items[i + 1:j]
+    ob.cursor = i + 1
+
+
+@glcall
+def objdelete(t1, t2):
+    """objdelete(3G): delete what lies between tags t1 and t2 (tags kept)."""
+    ob, i = _tag_index("objdelete", t1)
+    _, j = _tag_index("objdelete", t2)
+    if j < i:
+        i, j = j, i
+    del ob.items[i + 1:j]
+    ob.cursor = min(ob.cursor, len(ob.items))

@@ -1,0 +1,230 @@
+"""Display lists (objects): recording, compiling, replay (reference section 12).
+
+Between ``makeobj`` and ``closeobj`` the IRIS GL calls are recorded, not
+executed (queries and immediate-only calls still execute, see
+``irisgl.objects.IMMEDIATE``).  An object is a list of items:
+
+- ``("call", name, fn, args)``: a recorded call, replayed through the same
+  validated function (so errors and lenient mode behave as in immediate mode);
+- ``("tag", t)``: a ``maketag`` marker for ``objreplace``/``objinsert``/
+  ``objdelete``.
+
+When an object is closed its items are compiled once: every maximal run of
+geometry calls (bgn*/end*, v*, n3f, c*, cpack, RGBcolor, color, swaptmesh) of
+one primitive class becomes a :class:`GeometryRun` holding its positions,
+attribute states and primitive table as arrays.  ``callobj`` appends a run to
+the window's batch with list/array operations only, so replay costs no
+Python work per vertex.  Attributes not set inside a run (the colour or
+normal before its first c*/n3f) are taken from the state at ``callobj``
+time, as the calls themselves would; after the run the state holds the
+run's last colour and normal, as after executing the calls.
+A run that cannot be compiled (unbalanced bgn/end, a bad argument) is kept
+as plain calls, which raise their GLError when replayed.
+"""
+import numpy as np
+
+from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
+from .geometry.batch import CLASS_OF, COLOUR_SINCE_BIND, LAST_WAS_NORMAL, Transform
+
+BGN = {"bgnpolygon": POLYGON, "bgntmesh": TMESH, "bgnqstrip": QSTRIP, "bgnline": LINE,
+       "bgnclosedline": CLOSEDLINE, "bgnpoint": POINT}
+END = {"end" + k[3:]: v for k, v in BGN.items()}
+VERTEX = {f"v{n}{t}": n for n in (2, 3, 4) for t in "sifd"}
+COLOUR = {"c3f", "c4f", "c3i", "c4i", "c3s", "c4s", "cpack", "RGBcolor", "color"}
+GEOMETRY = set(BGN) | set(END) | set(VERTEX) | COLOUR | {"n3f", "swaptmesh"}
+MAX_DEPTH = 64      # nesting of callobj during replay
+
+
+class NotCompilable(Exception):
+    pass
+
+
+class GeometryRun:
+    """Compiled geometry of one primitive class."""
+
+    __slots__ = ("klass", "pos", "akey", "states", "table", "swaps", "rgb", "final",
+                 "nverts")
+
+    def __init__(self, klass, pos, akey, states, table, swaps, rgb, final):
+        self.klass = klass
+        self.pos = pos              # flat Python list of floats (x, y, z, w)*
+        self.akey = akey            # (N,) int64: index into states
+        self.states = states        # [(normal|None, colour|None, last|None, coloured)]
+        self.table = table          # (P, 4) int64 [kind, start, count, concave]
+        self.swaps = swaps          # (S,) int64 vertex indices
+        self.rgb = rgb              # True: RGB colour calls; False: color(); None: neither
+        self.final = final          # (normal|None, colour|None, last|None)
+        self.nverts = len(akey)
+
+
+def _colour_of(name, args):
+    """The RGBA (0..255) a colour call sets, or the index for color()."""
+    a = args[0] if len(args) == 1 else args
+    if name == "cpack":
+        c = int(a) & 0xFFFFFFFF
+        return (float(c & 0xFF), float((c >> 8) & 0xFF), float((c >> 16) & 0xFF),
+                float((c >> 24) & 0xFF))
+    if name == "RGBcolor":
+        r, g, b = (min(max(int(v), 0), 255) for v in args)
+        return (float(r), float(g), float(b), 255.0)
+    if name == "color":
+        return (float(int(a) & 0xFFF), 0.0, 0.0, 0.0)
+    vals = [float(v) for v in a]
+    n = 3 if name[1] == "3" else 4
+    if len(vals) != n:
+        raise NotCompilable
+    if name.endswith("f"):
+        vals = [v if v != v else min(max(v, 0.0), 1.0) * 255.0 for v in vals]
+    else:
+        vals = [v if v != v else min(max(v, 0.0), 255.0) for v in vals]
+    return tuple(vals) if n == 4 else tuple(vals) + (255.0,)
+
+
+def compile_run(calls):
+    """Compile geometry calls [(name, args)] of one primitive class."""
+    normal = colour = last = None
+    coloured = False
+    states, index = [], {}
+    pos, akey, prims, swaps = [], [], [], []
+    open_kind, start, klass, rgb = None, 0, None, None
+    for name, args in calls:
+        if name in VERTEX:
+            if open_kind is None:
+                raise NotCompilable
+            n = VERTEX[name]
+            v = [float(x) for x in args[0]]
+            if len(v) != n:
+                raise NotCompilable
+            v = v + [0.0] * (3 - n) + [1.0] if n < 4 else v
+            key = (normal, colour, last, coloured)
+            k = index.get(key)
+            if k is None:
+                k = index[key] = len(states)
+                states.append(key)
+            pos += v
+            akey.append(k)
+            if open_kind == POLYGON and len(akey) - start > 256:
+                raise NotCompilable
+        elif name == "n3f":
+            v = tuple(float(x) for x in args[0])
+            if len(v) != 3:
+                raise NotCompilable
+            normal, last = v, "n"
+        elif name in COLOUR:
+            mode_rgb = name != "color"
+            if rgb is not None and rgb != mode_rgb:
+                raise NotCompilable
+            rgb = mode_rgb
+            colour, last, coloured = _colour_of(name, args), "c", True
+        elif name in BGN:
+            if open_kind is not None:
+                raise NotCompilable
+            open_kind = BGN[name]
+            if klass is not None and CLASS_OF[open_kind] != klass:
+                raise NotCompilable
+            klass = CLASS_OF[open_kind]
+            start = len(akey)
+        elif name in END:
+            if open_kind != END[name]:
+                raise NotCompilable
+            if len(akey) > start:
+                prims.append((open_kind, start, len(akey) - start, 0))
+            open_kind = None
+        elif name == "swaptmesh":
+            if open_kind != TMESH:
+                raise NotCompilable
+            swaps.append(len(akey))
+    if open_kind is not None:
+        raise NotCompilable
+    table = np.array(prims, np.int64).reshape(-1, 4)
+    return GeometryRun(klass, pos, np.array(akey, np.int64), states, table,
+                       np.array(swaps, np.int64), rgb, (normal, colour, last))
+
+
+def compile_items(items):
+    """Items -> replay ops: ("call", fn, args) and ("run", GeometryRun | None, calls).
+
+    Runs are split where the primitive class changes; colour/normal calls
+    between primitives stay in the run of the primitives around them."""
+    ops = []
+    pending = []          # (name, fn, args) of the current geometry run
+    klass = None
+
+    def close():
+        nonlocal pending, klass
+        if pending:
+            calls = [(n, a) for n, _, a in pending]
+            try:
+                run = compile_run(calls) if klass is not None else None
+            except (NotCompilable, TypeError, ValueError, OverflowError):
+                run = None
+            if run is not None:
+                ops.append(("run", run, pending))
+            else:
+                ops.extend(("call", fn, a) for _, fn, a in pending)
+        pending = []
+        klass = None
+
+    for item in items:
+        if item[0] != "call":
+            continue
+        _, name, fn, args = item
+        if name in GEOMETRY:
+            if name in BGN:
+                k = CLASS_OF[BGN[name]]
+                if klass is not None and k != klass:
+                    close()
+                klass = k
+            pending.append((name, fn, args))
+        else:
+            close()
+            ops.append(("call", fn, args))
+    close()
+    return ops
+
+
+def replay_run(machine, win, run):
+    """Append a compiled run to the window's batch (no per-vertex Python)."""
+    st = win.st
+    if run.rgb is not None and run.rgb != st.rgb:
+        return False                      # wrong mode: replay the calls instead
+    b = win.batch
+    if len(b) and b.klass != run.klass:
+        machine._flush(win)
+    b.klass = run.klass
+    if b.xf_dirty or not b.xforms:
+        mv, pr = st.matrices.vertex_matrices()
+        b.xforms.append(Transform(mv, pr))
+        b.xf_dirty = False
+    xf = len(b.xforms) - 1
+    base_attr = len(b.attrs) // 9
+    flat = []
+    for normal, colour, last, coloured in run.states:
+        lw = st.last_was_normal if last is None else last == "n"
+        since = st.colour_since_bind or (coloured and st.material != 0)
+        flags = (LAST_WAS_NORMAL if lw else 0) | (COLOUR_SINCE_BIND if since else 0)
+        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf)
+    b.attrs += flat
+    v0 = len(b.akey)
+    b.pos += run.pos
+    b.akey += (run.akey + base_attr).tolist()
+    if len(run.swaps):
+        b.swaps += (run.swaps + v0).tolist()
+    table = run.table.copy()
+    table[:, 1] += v0
+    if st.concave:
+        table[:, 3] = table[:, 0] == POLYGON
+    b.add_block(table)
+    b.start = len(b.akey)
+    # the state the calls would have left
+    normal, colour, last = run.final
+    if normal is not None:
+        st.normal = normal
+    if colour is not None:
+        st.colour = colour
+        if st.material:
+            st.colour_since_bind = True
+    if last is not None:
+        st.last_was_normal = last == "n"
+    b.dirty = True
+    return True
