@@ -11,6 +11,7 @@ from vgx_emulator.errors import GLError
 from . import accum as _accum
 from . import colormap as _colormap
 from . import constants as _constants
+from . import curves as _curves
 from . import depth as _depth
 from . import events as _events
 from . import fragment as _fragment
@@ -26,6 +27,7 @@ from . import window as _window
 from .accum import *         # noqa: F401,F403
 from .colormap import *      # noqa: F401,F403
 from .constants import *     # noqa: F401,F403
+from .curves import *        # noqa: F401,F403
 from .depth import *         # noqa: F401,F403
 from .events import *        # noqa: F401,F403
 from .fragment import *      # noqa: F401,F403
@@ -43,4 +45,4 @@ __all__ = sorted(set(["GLError"] + _constants.__all__ + _types.__all__ + _window
                      + _matrix.__all__ + _primitives.__all__ + _lighting.__all__
                      + _depth.__all__ + _events.__all__ + _colormap.__all__
                      + _pixels.__all__ + _fragment.__all__ + _pattern.__all__
-                     + _stencil.__all__ + _accum.__all__ + _objects.__all__))
+                     + _stencil.__all__ + _accum.__all__ + _objects.__all__ + _curves.__all__))
