@@ -21,7 +21,7 @@ __all__ = ["defbasis", "curvebasis", "curveprecision", "crv", "crvn", "rcrv", "r
 
 def _state():
     m = machine
-    if not hasattr(m, "curve_state"):
+    if m.curve_state is None:
         m.curve_state = {"bases": {}, "curvebasis": None, "curveprecision": None,
                          "patchbasis": None, "patchcurves": None, "patchprecision": None}
     return m.curve_state

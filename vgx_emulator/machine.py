@@ -69,6 +69,7 @@ class VGX:
         self.pref = {}
         self.objects = {}              # display lists: Object -> irisgl.objects._Object
         self.recording = None          # the Object being recorded, or None
+        self.curve_state = None        # defbasis/curvebasis/patch* settings (irisgl.curves)
         self.patterns = {}             # defpattern: index -> (size, bits (size, size) uint8)
         self.frame_hook = None         # runner: called at each frame end
         self.last_image = None         # what the last closed window showed
