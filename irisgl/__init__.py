@@ -22,6 +22,7 @@ from . import matrix as _matrix
 from . import objects as _objects
 from . import pixels as _pixels
 from . import primitives as _primitives
+from . import texture as _texture
 from . import types as _types
 from . import window as _window
 from .accum import *         # noqa: F401,F403
@@ -38,6 +39,7 @@ from .matrix import *        # noqa: F401,F403
 from .objects import *       # noqa: F401,F403
 from .pixels import *        # noqa: F401,F403
 from .primitives import *    # noqa: F401,F403
+from .texture import *       # noqa: F401,F403
 from .types import *         # noqa: F401,F403
 from .window import *        # noqa: F401,F403
 
@@ -45,4 +47,5 @@ __all__ = sorted(set(["GLError"] + _constants.__all__ + _types.__all__ + _window
                      + _matrix.__all__ + _primitives.__all__ + _lighting.__all__
                      + _depth.__all__ + _events.__all__ + _colormap.__all__
                      + _pixels.__all__ + _fragment.__all__ + _pattern.__all__
-                     + _stencil.__all__ + _accum.__all__ + _objects.__all__ + _curves.__all__))
+                     + _stencil.__all__ + _accum.__all__ + _objects.__all__ + _curves.__all__
+                     + _texture.__all__))

@@ -69,6 +69,8 @@ class VGX:
         self.pref = {}
         self.objects = {}              # display lists: Object -> irisgl.objects._Object
         self.recording = None          # the Object being recorded, or None
+        self.textures = {}             # texdef2d: index -> vgx_emulator.texture.Texture
+        self.environments = {}         # tevdef: index -> Environment
         self.curve_state = None        # defbasis/curvebasis/patch* settings (irisgl.curves)
         self.patterns = {}             # defpattern: index -> (size, bits (size, size) uint8)
         self.frame_hook = None         # runner: called at each frame end
@@ -164,15 +166,43 @@ class VGX:
         st = win.st
         vp = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
         if vp is not None:
-            work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport)
+            tex = self._texturing(win) if b.klass == FILLED else None
+            work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport,
+                                          texturing=tex is not None)
             key, planes, ip = self._raster_setup(win, work, work.klass == FILLED)
+            key = key._replace(texture=tex is not None)
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
-            scan.scan_batch(work, key, planes, ip, cull, not st.subpixel)
+            scan.scan_batch(work, key, planes, ip, cull, not st.subpixel, tex)
         if b.open is not None:
             b.keep_open_primitive()
         else:
             b.reset()
+
+    def _texturing(self, win):
+        """(Texture, parameters) when texturing is on: a texture != 0 bound to
+        TX_TEXTURE_0 and an environment != 0 to TV_ENV0, in RGB mode
+        (reference 16); otherwise None."""
+        from . import texture as T
+        from .raster import texture as RT
+        st = win.st
+        if not (st.rgb and st.texture and st.tev):
+            return None
+        tx = self.textures.get(st.texture)
+        env = self.environments.get(st.tev)
+        if tx is None or env is None:
+            return None
+        mode = RT.ENV_MODULATE
+        if env.mode == T.TV_DECAL and tx.nc >= 3:
+            mode = RT.ENV_DECAL
+        elif env.mode == T.TV_BLEND and tx.nc <= 2:
+            mode = RT.ENV_BLEND
+        p = np.zeros(7)
+        p[RT.T_WRAPS] = tx.wrap_s != T.TX_CLAMP
+        p[RT.T_WRAPT] = tx.wrap_t != T.TX_CLAMP
+        p[RT.T_ENV] = mode
+        p[RT.T_CR:RT.T_CA + 1] = env.colour
+        return tx, p
 
     def _targets(self, win):
         """The colour banks drawing goes to (frontbuffer/backbuffer(3G))."""
@@ -204,7 +234,8 @@ class VGX:
                         stencil=stencil,
                         blend=color and st.rgb and not logic and st.blendfunc != (1, 0),
                         logic=logic, atest=st.rgb and st.afunc[1] != 7,
-                        pattern=pat is not None, cmask=color and cmask_val != full)
+                        pattern=pat is not None, cmask=color and cmask_val != full,
+                        texture=False)
         zb = fb.ensure_z() if ztest else _DUMMY_Z
         c0 = targets[0] if targets else _DUMMY_C
         c1 = targets[1] if len(targets) > 1 else _DUMMY_C

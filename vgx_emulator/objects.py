@@ -24,7 +24,7 @@ as plain calls, which raise their GLError when replayed.
 import numpy as np
 
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
-from .geometry.batch import CLASS_OF, COLOUR_SINCE_BIND, LAST_WAS_NORMAL, Transform
+from .geometry.batch import CLASS_OF, COLOUR_SINCE_BIND, LAST_WAS_NORMAL, RECORD, Transform
 
 BGN = {"bgnpolygon": POLYGON, "bgntmesh": TMESH, "bgnqstrip": QSTRIP, "bgnline": LINE,
        "bgnclosedline": CLOSEDLINE, "bgnpoint": POINT}
@@ -197,13 +197,13 @@ def replay_run(machine, win, run):
         b.xforms.append(Transform(mv, pr))
         b.xf_dirty = False
     xf = len(b.xforms) - 1
-    base_attr = len(b.attrs) // 9
+    base_attr = len(b.attrs) // RECORD
     flat = []
     for normal, colour, last, coloured in run.states:
         lw = st.last_was_normal if last is None else last == "n"
         since = st.colour_since_bind or (coloured and st.material != 0)
         flags = (LAST_WAS_NORMAL if lw else 0) | (COLOUR_SINCE_BIND if since else 0)
-        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf)
+        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf) + st.texcoord
     b.attrs += flat
     v0 = len(b.akey)
     b.pos += run.pos

@@ -36,6 +36,7 @@ class WindowState:
         # current vertex attributes
         self.colour = (0.0, 0.0, 0.0, 255.0)   # RGBA 0..255, or (index, 0, 0, 0)
         self.normal = (0.0, 0.0, 1.0)
+        self.texcoord = (0.0, 0.0, 0.0, 1.0)    # t*(): s, t, r, q
         self.last_was_normal = False
         self.colour_since_bind = False
         # lighting bindings: target -> index; lights: slot -> LightBinding
@@ -62,5 +63,9 @@ class WindowState:
         self.dither = True
         self.pattern = 0                           # setpattern index; 0 = solid
         self.zoom = (1.0, 1.0)                     # rectzoom
+        # texture mapping: bound texture / environment, texgen per coordinate
+        self.texture = 0
+        self.tev = 0
+        self.texgen = {}                           # coord -> (mode, plane (4,), enabled)
         # graphics position (move/draw) and character position
         self.gpos = None

@@ -39,6 +39,7 @@ class WindowWork:
     seg1: np.ndarray = None
     segflat: np.ndarray = None     # (S, 4)
     points: np.ndarray = None      # (P, 7)
+    TC: np.ndarray = None          # (V, 3) s/w, t/w, 1/w when texturing
     twoside: bool = False
     dropped: int = 0
     extra: dict = field(default_factory=dict)
@@ -106,6 +107,32 @@ def _light(st, defs, eye4, attrs, xf, xforms):
     return col, back
 
 
+def texture_coordinates(st, pos, eye4, attrs, xf, xforms):
+    """(N, 2) texture coordinates: t*() values, texgen replacements, the
+    texture matrix, divided by q (reference 16)."""
+    tc = attrs[:, 9:13].copy()
+    for coord, (mode, plane, enabled) in st.texgen.items():
+        if not enabled:
+            continue
+        if mode == 3:                                   # TG_LINEAR: object coordinates
+            tc[:, coord] = pos @ plane
+        elif mode == 2:                                 # TG_CONTOUR: eye coordinates
+            tc[:, coord] = eye4 @ plane
+        elif mode == 4 and coord in (0, 1):             # TG_SPHEREMAP
+            nm = [lighting.normal_matrix(t.modelview)[0] for t in xforms]
+            n = np.einsum("ni,nij->nj", attrs[:, 0:3], np.stack(nm)[xf])
+            n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-30)
+            u = eye4[:, :3] / np.maximum(np.linalg.norm(eye4[:, :3], axis=1, keepdims=True),
+                                         1e-30)
+            r = u - 2.0 * n * (n * u).sum(axis=1, keepdims=True)
+            m = 2.0 * np.sqrt(r[:, 0] ** 2 + r[:, 1] ** 2 + (r[:, 2] + 1.0) ** 2)
+            m = np.maximum(m, 1e-30)
+            tc[:, coord] = r[:, coord] / m + 0.5
+    tc = tc @ st.matrices.texture.astype(np.float64)
+    q = np.where(tc[:, 3] != 0, tc[:, 3], 1.0)
+    return tc[:, :2] / q[:, None]
+
+
 def _assemble_filled(batch, pos, table):
     """Triangles of every filled primitive, in submission order."""
     kinds, starts, counts = table[:, 0], table[:, 1], table[:, 2]
@@ -151,10 +178,11 @@ def _assemble_filled(batch, pos, table):
     return tris[order], prov[order]
 
 
-def process_batch(batch, st, defs, snap, viewport_rect):
+def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
     """Run the geometry pipeline over ``batch``; returns a WindowWork."""
     pos, attrs = batch.arrays()
     eye4, clp, xf = _transform(pos, attrs, batch.xforms)
+    tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
     col, back = _light(st, defs, eye4, attrs, xf, batch.xforms)
     bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
             & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))
@@ -172,8 +200,9 @@ def process_batch(batch, st, defs, snap, viewport_rect):
         inside = (ca | cb | cc) == 0
         reject = (ca & cb & cc) != 0
         cross = ~inside & ~reject
-        attrs_cols = col if back is None else np.concatenate((col, back), axis=1)
-        verts = np.concatenate((clp, attrs_cols), axis=1)
+        cols = [clp, col] + ([back] if back is not None else []) + \
+            ([tc] if tc is not None else [])
+        verts = np.concatenate(cols, axis=1)
         src_in = np.nonzero(inside)[0]
         keep_t, keep_p, keep_o = [tris[inside]], [prov[inside]], [src_in]
         if cross.any():
@@ -194,6 +223,11 @@ def process_batch(batch, st, defs, snap, viewport_rect):
         work.Z = zw
         work.C = np.ascontiguousarray(verts[:, 4:8])
         work.CB = np.ascontiguousarray(verts[:, 8:12]) if back is not None else work.C
+        if tc is not None:
+            k = 12 if back is not None else 8
+            w = np.where(ok, verts[:, 3], 1.0)
+            work.TC = np.ascontiguousarray(
+                np.stack((verts[:, k] / w, verts[:, k + 1] / w, 1.0 / w), axis=1))
     elif batch.klass == LINES:
         starts, counts = table[:, 1], table[:, 2]
         closed = table[:, 0] == CLOSEDLINE

@@ -16,6 +16,9 @@ CLASS_OF = {POLYGON: FILLED, TMESH: FILLED, QSTRIP: FILLED,
             LINE: LINES, CLOSEDLINE: LINES, POINT: POINTS}
 
 # attribute record flags
+#: floats per attribute record: normal (3), colour (4), flags, transform, s t r q
+RECORD = 13
+
 LAST_WAS_NORMAL = 1
 COLOUR_SINCE_BIND = 2
 
@@ -40,7 +43,7 @@ class VertexBatch:
         self.pos = []               # flat x, y, z, w floats
         self.akey = []              # per vertex: index into attrs
         self.cap = 1 << 62          # vertex count at which the open polygon is full
-        self.attrs = []             # flat records of 9: normal, colour, flags, transform
+        self.attrs = []             # flat records: normal, colour, flags, transform, s t r q
         self.xforms = []
         self.prims = []             # (kind, start, count, concave) of immediate primitives
         self.blocks = []            # earlier primitives as (P, 4) int64 arrays, in order
@@ -79,8 +82,8 @@ class VertexBatch:
             self.xf_dirty = False
         flags = (LAST_WAS_NORMAL if st.last_was_normal else 0) | \
                 (COLOUR_SINCE_BIND if st.colour_since_bind else 0)
-        self.attrs += st.normal + st.colour + (flags, len(self.xforms) - 1)
-        self.cur = len(self.attrs) // 9 - 1
+        self.attrs += st.normal + st.colour + (flags, len(self.xforms) - 1) + st.texcoord
+        self.cur = len(self.attrs) // RECORD - 1
         self.dirty = False
 
     def keep_open_primitive(self):
@@ -94,12 +97,12 @@ class VertexBatch:
         self.cap = cap
         self.pos, self.akey, self.swaps = pos, akey, swaps
         self.attrs, self.xforms, self.klass = attrs, xforms, klass
-        self.cur = len(attrs) // 9 - 1
+        self.cur = len(attrs) // RECORD - 1
         self.dirty = True
         self.xf_dirty = True
 
     def arrays(self):
-        """(positions (N, 4), attributes (N, 9)) as float64 arrays."""
+        """(positions (N, 4), attributes (N, RECORD)) as float64 arrays."""
         pos = np.array(self.pos, np.float64).reshape(-1, 4)
-        attrs = np.array(self.attrs, np.float64).reshape(-1, 9)
+        attrs = np.array(self.attrs, np.float64).reshape(-1, RECORD)
         return pos, attrs[np.asarray(self.akey, np.int64)]

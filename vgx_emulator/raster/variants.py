@@ -31,4 +31,4 @@ KERNEL_SOURCE_HASH = _source_hash()
 
 #: Fields of the raster key, in kernel-factory argument order.
 RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside "
-                                    "stencil blend logic atest pattern cmask")
+                                    "stencil blend logic atest pattern cmask texture")

@@ -13,15 +13,53 @@ from . import triangles as _tris
 from .triangles import setup_triangles
 
 
-def scan_batch(work, key, planes, ip, cull, closed_lines):
-    """Rasterize one WindowWork with the raster ``key`` and parameters ``ip``."""
+_NO_TC = np.zeros((1, 3))
+_NO_TEX = (np.zeros((1, 4), np.uint8), np.array([1, 0, 1, 1], np.int64),
+           np.zeros(1, np.int64), np.zeros(7))
+
+
+def texture_inputs(work, texture, env, tparams):
+    """The kernel's texture tuple: texels, level table, per-triangle
+    (level << 1 | bilinear), parameters.  Level choice is per triangle from
+    the ratio of its texel area to its pixel area (log2 / 2, rounded)."""
+    tris = work.tris
+    s = work.TC[:, 0] / work.TC[:, 2]
+    t = work.TC[:, 1] / work.TC[:, 2]
+    w, h = texture.levels[0].shape[1], texture.levels[0].shape[0]
+    a, b, c = tris[:, 0], tris[:, 1], tris[:, 2]
+    tex_area = np.abs((s[b] - s[a]) * (t[c] - t[a]) - (t[b] - t[a]) * (s[c] - s[a])) * w * h
+    one = float(1 << 8)
+    X, Y = work.X / one, work.Y / one
+    pix_area = np.abs((X[b] - X[a]) * (Y[c] - Y[a]) - (Y[b] - Y[a]) * (X[c] - X[a]))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lod = 0.5 * np.log2(tex_area / pix_area)
+    lod = np.nan_to_num(lod, nan=0.0, posinf=30.0, neginf=0.0)
+    minify = lod > 0
+    tsel = np.zeros(len(tris), np.int64)
+    nlev = len(texture.levels)
+    for mn in (False, True):
+        sel = minify == mn
+        mode, mip = texture.mode(mn)
+        level = np.clip(np.floor(lod[sel] + 0.5), 0, nlev - 1).astype(np.int64) if mip else 0
+        tsel[sel] = (level << 1) | mode
+    return (texture.texels, texture.info, tsel, tparams)
+
+
+def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None):
+    """Rasterize one WindowWork with the raster ``key`` and parameters ``ip``;
+    ``tex`` = (Texture, tparams) when texturing."""
     if work.klass == FILLED:
         if work.tris is None or len(work.tris) == 0:
             return 0
         setup = setup_triangles(work.X, work.Y, work.tris, cull,
                                 ip[0], ip[1], ip[2], ip[3])
+        if key.texture:
+            tk = texture_inputs(work, tex[0], None, tex[1])
+            tc = work.TC
+        else:
+            tk, tc = _NO_TEX, _NO_TC
         _tris.triangle_kernel(key)(setup, work.X, work.Y, work.Z, work.C, work.CB,
-                                   work.prov, planes, ip)
+                                   work.prov, planes, ip, tc, tk)
         return int(setup[5].sum())
     if work.klass == LINES:
         if len(work.seg0) == 0:

@@ -42,7 +42,7 @@ def point_kernel(key):
 
 
 def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
-                      stencil, blend, logic, atest, pattern, cmask):
+                      stencil, blend, logic, atest, pattern, cmask, texture):
     src_hash = KERNEL_SOURCE_HASH
 
     @njit
@@ -104,7 +104,7 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
 
 
 def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
-                       stencil, blend, logic, atest, pattern, cmask):
+                       stencil, blend, logic, atest, pattern, cmask, texture):
     src_hash = KERNEL_SOURCE_HASH
 
     @njit

@@ -52,7 +52,7 @@ def pixel_kernel(key):
 
 
 def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
-                       stencil, blend, logic, atest, pattern, cmask):
+                       stencil, blend, logic, atest, pattern, cmask, texture):
     from ..raster import fragment as F
     from ..raster.variants import KERNEL_SOURCE_HASH
     src_hash = KERNEL_SOURCE_HASH

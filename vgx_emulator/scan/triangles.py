@@ -9,14 +9,17 @@ culling, CCW ordering, integer edge equations with the fill rule
 band walks every triangle that overlaps it in submission order, so a pixel
 sees its triangles in the order they were drawn whatever the thread count.
 Per pixel: integer inside test, then z and colour interpolated linearly in
-screen space from the barycentric weights (Decision 4), then the fragment
-operations of :mod:`raster`.
+screen space from the barycentric weights (Decision 4); texture coordinates
+perspective-correct (s/w, t/w and 1/w interpolated, then divided), sampled
+and combined by the texture environment (raster/texture.py); then the
+fragment operations of :mod:`raster`.
 """
 import numpy as np
 
 from .. import config
 from ..jit import njit, pnjit, prange
 from ..raster import fragment
+from ..raster import texture as _tex
 from ..raster.variants import KERNEL_SOURCE_HASH
 from .fixed import SHIFT, edge_coefficients
 
@@ -104,13 +107,14 @@ def triangle_kernel(key):
 
 
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
-                          stencil, blend, logic, atest, pattern, cmask):
+                          stencil, blend, logic, atest, pattern, cmask, texture):
     src_hash = KERNEL_SOURCE_HASH      # closure constant: keys the disk cache
     band_rows = config.BAND_ROWS
 
     @pnjit
-    def walk(setup, X, Y, Z, C, CB, prov, planes, ip):
+    def walk(setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
         edges, verts, box, inv_area, back, valid = setup
+        texels, tinfo, tsel, tp = tex
         _ = src_hash
         sy0 = ip[fragment.P_SY0]
         sy1 = ip[fragment.P_SY1]
@@ -134,6 +138,8 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 use_back = twoside and back[i]
                 cols = CB if use_back else C
                 # flat colour: the provoking vertex
+                tlevel = tsel[i] >> 1 if texture else 0
+                tbil = (tsel[i] & 1) == 1 if texture else False
                 pv = prov[i]
                 fr = cols[pv, 0]
                 fg = cols[pv, 1]
@@ -177,6 +183,15 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                                 g = fg
                                 bb = fb
                                 al = fa
+                            if texture:
+                                iw = w0 * TC[a, 2] + w1 * TC[b, 2] + w2 * TC[c, 2]
+                                ts = (w0 * TC[a, 0] + w1 * TC[b, 0] + w2 * TC[c, 0]) / iw
+                                tt = (w0 * TC[a, 1] + w1 * TC[b, 1] + w2 * TC[c, 1]) / iw
+                                tr, tg, tb, ta = _tex.sample(texels, tinfo, tlevel, tbil,
+                                                             ts, tt, tp[0] != 0, tp[1] != 0)
+                                r, g, bb, al = _tex.environment(int(tp[2]), r, g, bb, al,
+                                                                tr, tg, tb, ta,
+                                                                tp[3], tp[4], tp[5])
                             fragment.fragment(ztest, zwrite, color, cmode, stencil,
                                               blend, logic, atest, pattern, cmask,
                                               x, y, z, r, g, bb, al, planes, ip)
