@@ -18,6 +18,12 @@ import math
 
 from irisgl import *
 
+FIGURES = [
+    {"name": "fig1", "args": [],
+     "caption": "Williams 1978, fig. 1: the observer's view of four spheres "
+                "(lit, no shadows yet)."},
+]
+
 WIDTH, HEIGHT = 640, 480
 SLICES, STACKS = 32, 16
 CENTRES = [(-3.45, 0.0, 0.6), (-1.15, 0.0, -0.6), (1.15, 0.0, 0.6), (3.45, 0.0, -0.6)]
