@@ -3,6 +3,8 @@ wrapper every call goes through (strict/lenient errors, bgn/end rule)."""
 import functools
 import math
 
+import numpy as np
+
 from vgx_emulator.errors import GLError, fail, is_lenient, report
 from vgx_emulator.machine import VGX
 
@@ -98,6 +100,10 @@ def num(call, x, what="argument"):
 
 
 def integer(call, x, what="argument"):
+    if isinstance(x, int):
+        return int(x)                     # exact, however wide (Decision 13 masks)
+    if isinstance(x, np.integer):
+        return int(x)
     try:
         f = float(x)
     except (TypeError, ValueError):

@@ -29,7 +29,7 @@ IMMEDIATE = {
     "singlebuffer", "stensize", "acsize", "zbsize", "gconfig", "gexit", "ginit", "greset",
     "swapbuffers", "gflush", "finish", "defpattern", "mapcolor", "qdevice", "unqdevice",
     "qenter", "qreset", "qread", "qtest", "isqueued", "tie", "readsource", "lrectread",
-    "rectread", "getgdesc", "gRGBcolor", "lgetdepth"}
+    "rectread", "getgdesc", "gRGBcolor", "lgetdepth", "defbasis"}
 
 
 class _Object:

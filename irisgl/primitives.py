@@ -90,7 +90,8 @@ def n3f(n):
 
 # -- colours -----------------------------------------------------------------
 def _clamp01(v):
-    return v if v != v else min(max(v, 0.0), 1.0)     # NaN passes (dropped later)
+    # NaN and +-inf pass unclamped: the flush drops the primitive with a warning
+    return min(max(v, 0.0), 1.0) if -1e300 < v < 1e300 else v
 
 
 def _rgb_only(call):
@@ -116,7 +117,7 @@ def _int_colour(name, n):
     def c(v):
         w = _rgb_only(name)
         p = vec(name, v, n, "colour")
-        q = [v if v != v else min(max(v, 0.0), 255.0) for v in p]
+        q = [min(max(v, 0.0), 255.0) if -1e300 < v < 1e300 else v for v in p]
         machine.set_colour(w, (q[0], q[1], q[2], q[3] if n == 4 else 255.0))
     c.__name__ = name
     c.__doc__ = f"{name}(3G): RGB{'A' if n == 4 else ''} colour, components 0-255."
@@ -403,12 +404,16 @@ def n3f(a):
 
 def _unit(v):
     v = float(v)
-    return 0.0 if v < 0.0 else (1.0 if v > 1.0 else v)     # NaN passes through
+    if -1e300 < v < 1e300:
+        return 0.0 if v < 0.0 else (1.0 if v > 1.0 else v)
+    return v                      # NaN and +-inf: dropped with a warning at the flush
 
 
 def _byte(v):
     v = float(v)
-    return 0.0 if v < 0.0 else (255.0 if v > 255.0 else v)
+    if -1e300 < v < 1e300:
+        return 0.0 if v < 0.0 else (255.0 if v > 255.0 else v)
+    return v
 
 
 def _fast_colour(slow, n, conv, k):

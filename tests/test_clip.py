@@ -398,16 +398,12 @@ def _other():
 BAD = [math.nan, math.inf, -math.inf]
 
 
-INF_COLOUR = pytest.mark.xfail(strict=True, reason=(
-    "BUG: irisgl/primitives.py c3f/_unit clamps +-inf to 1.0/0.0 instead of dropping the "
-    "primitive with a warning (porting conventions 5: infinity in a colour)"))
 CASES = [(w, b) for w in ["vertex", "normal", "colour", "matrix", "tmesh", "line", "point"]
          for b in BAD] + [("overflow", math.nan)]
 
 
 @pytest.mark.parametrize("where,bad", [
-    pytest.param(w, b, marks=INF_COLOUR) if (w == "colour" and math.isinf(b)) else (w, b)
-    for w, b in CASES])
+    (w, b) for w, b in CASES])
 def test_non_finite_input_drops_the_primitive(where, bad):
     _window()
     _blank()

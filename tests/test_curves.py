@@ -448,9 +448,6 @@ def test_reset_forgets_curve_state():
         curvebasis(BEZIER_ID)                        # the basis went too
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "BUG: defbasis is immediate-only (reference 17, [M-AIX]) but irisgl/objects.py "
-    "IMMEDIATE does not list it, so inside makeobj it is recorded, not executed"))
 def test_defbasis_is_immediate_inside_makeobj():
     _window()
     makeobj(1)

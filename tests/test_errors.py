@@ -406,9 +406,6 @@ def test_cpack_wider_than_32_bits(win):
     assert lrectread(0, 0, 0, 0)[0, 0] == 0xFF0000FF
 
 
-@pytest.mark.xfail(strict=True, reason="BUG: irisgl/_current.py:100-107 integer() converts through "
-                   "float, so masks wider than 2**53 lose their low bits before ulong() "
-                   "reduces them modulo 2**32 (Decision 13)")
 def test_very_wide_masks_reduced_exactly(win):
     zbuffer(FALSE)
     cpack((0xABC << 64) | 0xFF00FF00)   # mod 2**32 = 0xFF00FF00

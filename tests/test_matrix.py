@@ -32,7 +32,11 @@ def xform(p, m=None):
 
 @pytest.fixture
 def win(open_window):
-    return open_window(64, 48)
+    """A window whose single matrix starts as identity (winopen loads the
+    pixel ortho2; the modelling tests below start from identity)."""
+    gid = open_window(64, 48)
+    loadmatrix(I4)
+    return gid
 
 
 # -- modelling transformations ---------------------------------------------------
@@ -40,11 +44,8 @@ def test_initial_mode_is_msingle(win):
     assert getmmode() == MSINGLE
 
 
-@pytest.mark.xfail(strict=True, reason="BUG: reference section 2 ('Defaults after winopen') says "
-                   "ortho2(-0.5, xsize-0.5, -0.5, ysize-0.5); the emulator leaves identity "
-                   "(vgx_emulator/state.py:25 MatrixState(), machine.py:87 winopen loads "
-                   "no projection)")
-def test_default_projection_after_winopen_is_pixel_ortho2(win):
+def test_default_projection_after_winopen_is_pixel_ortho2(open_window):
+    open_window(64, 48)
     # ortho2(-0.5, 63.5, -0.5, 47.5): 2/64, 2/48, -1, row 3 = (-63/64, -47/48, 0, 1)
     assert_matrix([[1 / 32, 0, 0, 0], [0, 1 / 24, 0, 0], [0, 0, -1, 0],
                    [-63 / 64, -47 / 48, 0, 1]])

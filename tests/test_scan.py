@@ -165,8 +165,6 @@ def test_reference_model_shared_edges_partition_a_square():
 # --------------------------------------------------------------------------
 # default projection
 
-@pytest.mark.xfail(strict=True, reason="BUG: winopen leaves the identity matrix; reference 2 "
-                                       "says the default is ortho2(-0.5, xsize-0.5, -0.5, ysize-0.5)")
 def test_default_projection_maps_pixel_centres():
     _window(projection=False)
     assert _alone([(2, 3), (10, 3), (10, 8), (2, 8)]) == ref.rect_pixels(2, 9, 3, 7)
@@ -504,10 +502,6 @@ def test_tmesh_registers_with_a_swap_in_the_middle():
     np.testing.assert_array_equal((_read() & 0xFF).astype(int), _count_array(sets))
 
 
-@pytest.mark.xfail(strict=True, reason="BUG: a swaptmesh after the last vertex of a tmesh is "
-                                       "applied to the first vertex of the next tmesh of the "
-                                       "same batch (machine.swaptmesh records len(akey); "
-                                       "geometry._assemble_filled marks swap_before there)")
 def test_trailing_swaptmesh_does_not_leak_into_the_next_tmesh():
     """The fan idiom 'v; swaptmesh()' may end a tmesh with a swap; the next
     tmesh starts with fresh registers and pointer, so with backface(TRUE) its
@@ -541,10 +535,6 @@ def test_trailing_swaptmesh_does_not_leak_into_the_next_tmesh():
     assert _pixels(_read()) == expected
 
 
-@pytest.mark.xfail(strict=True, reason="BUG: a swaptmesh after the last vertex of the last "
-                                       "tmesh of a batch indexes one past the vertex array "
-                                       "(geometry/__init__.py _assemble_filled: swap[s]) and "
-                                       "the flush raises IndexError")
 def test_trailing_swaptmesh_at_the_end_of_a_batch():
     _window()
     subpixel(TRUE)
@@ -561,10 +551,6 @@ def test_trailing_swaptmesh_at_the_end_of_a_batch():
     assert _pixels(_read()) == ref.triangle_pixels(*a, W, H)
 
 
-@pytest.mark.xfail(strict=True, reason="BUG: a tmesh whose swaptmesh leaves a register empty "
-                                       "makes fewer than n-2 triangles; geometry/__init__.py "
-                                       "(_assemble_filled) assumes n-2 and the flush raises "
-                                       "IndexError")
 def test_swaptmesh_before_the_second_vertex_does_not_crash():
     """bgntmesh; v0; swaptmesh; v1; v2; v3: with the register model of
     reference 3.2, v1 replaces v0 in R0 and only (v1, v2, v3) is drawn.  At

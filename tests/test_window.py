@@ -79,8 +79,10 @@ def test_winclose_and_winset():
 
 def test_windows_have_separate_state(open_window):
     a = open_window(16, 16)
+    loadmatrix(np.eye(4))
     translate(1, 2, 3)
     b = open_window(16, 16)
+    loadmatrix(np.eye(4))
     assert getmatrix()[3][0] == 0
     winset(a)
     assert getmatrix()[3][0] == 1

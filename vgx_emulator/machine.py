@@ -89,6 +89,9 @@ class VGX:
         w, h = self.pref.get("size", config.DEFAULT_WINDOW_SIZE)
         win = Window(self.next_gid, name, x, y, w, h)
         self.next_gid += 1
+        # the default projection maps window pixels: ortho2(-0.5, w-0.5, -0.5, h-0.5)
+        win.st.matrices.single[-1] = stack.ortho(-0.5, w - 0.5, -0.5, h - 0.5, -1.0,
+                                                 1.0).astype(np.float32)
         self.windows[win.gid] = win
         self.current = win
         self.pref = {}
@@ -287,6 +290,8 @@ class VGX:
             inside = f"inside bgn{KIND_NAMES[b.open[0]]}" if b.open else "not inside any bgn call"
             fail(call, f"{inside}", f"end{KIND_NAMES[kind]} closes bgn{KIND_NAMES[kind]}")
         n = len(b.akey) - b.start
+        while kind == TMESH and b.swaps and b.swaps[-1] >= len(b.akey):
+            b.swaps.pop()                 # a swap after the last vertex swaps nothing
         concave = kind == POLYGON and win.st.concave
         if n:
             b.prims.append((kind, b.start, n, concave))

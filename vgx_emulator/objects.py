@@ -74,9 +74,9 @@ def _colour_of(name, args):
     if len(vals) != n:
         raise NotCompilable
     if name.endswith("f"):
-        vals = [v if v != v else min(max(v, 0.0), 1.0) * 255.0 for v in vals]
+        vals = [min(max(v, 0.0), 1.0) * 255.0 if -1e300 < v < 1e300 else v for v in vals]
     else:
-        vals = [v if v != v else min(max(v, 0.0), 255.0) for v in vals]
+        vals = [min(max(v, 0.0), 255.0) if -1e300 < v < 1e300 else v for v in vals]
     return tuple(vals) if n == 4 else tuple(vals) + (255.0,)
 
 
@@ -127,6 +127,8 @@ def compile_run(calls):
         elif name in END:
             if open_kind != END[name]:
                 raise NotCompilable
+            if open_kind == TMESH:
+                swaps = [s for s in swaps if s < len(akey)]
             if len(akey) > start:
                 prims.append((open_kind, start, len(akey) - start, 0))
             open_kind = None
@@ -136,6 +138,7 @@ def compile_run(calls):
             swaps.append(len(akey))
     if open_kind is not None:
         raise NotCompilable
+    swaps = [s for s in swaps if s < len(akey)]
     table = np.array(prims, np.int64).reshape(-1, 4)
     return GeometryRun(klass, pos, np.array(akey, np.int64), states, table,
                        np.array(swaps, np.int64), rgb, (normal, colour, last))

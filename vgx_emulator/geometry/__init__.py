@@ -155,11 +155,12 @@ def _assemble_filled(batch, pos, table):
     if sel.any():
         swap = np.zeros(len(pos), bool)
         for s in batch.swaps:
-            swap[s] = ~swap[s]
-        t, p = assemble.tmeshes(starts[sel], counts[sel], swap)
+            if s < len(pos):
+                swap[s] = ~swap[s]
+        t, p, src = assemble.tmeshes(starts[sel], counts[sel], swap)
         parts.append(t)
         provs.append(p)
-        orders.append(np.repeat(seq[sel], np.maximum(counts[sel] - 2, 0)))
+        orders.append(seq[sel][src])
     for i in np.nonzero((kinds == POLYGON) & concave)[0]:
         s, n = starts[i], counts[i]
         if n < 3:

@@ -64,6 +64,7 @@ def _tmesh_kernel(starts, counts, swap_before):
         if counts[i] > 2:
             total += counts[i] - 2
     tris = np.empty((total, 3), np.int64)
+    src = np.empty(total, np.int64)
     k = 0
     for i in range(starts.shape[0]):
         r0 = -1
@@ -77,21 +78,24 @@ def _tmesh_kernel(starts, counts, swap_before):
                 tris[k, 0] = r0
                 tris[k, 1] = r1
                 tris[k, 2] = v
+                src[k] = i
                 k += 1
             if ptr == 0:
                 r0 = v
             else:
                 r1 = v
             ptr = 1 - ptr
-    return tris[:k]
+    return tris[:k], src[:k]
 
 
 def tmeshes(starts, counts, swap_before):
     """Triangles of triangle meshes; ``swap_before[v]`` counts (mod 2) the
-    swaptmesh calls issued just before vertex v."""
-    tris = _tmesh_kernel(np.asarray(starts, np.int64), np.asarray(counts, np.int64),
-                         np.asarray(swap_before, np.bool_))
-    return tris, tris[:, 2].copy()
+    swaptmesh calls issued just before vertex v.  Returns (tris, provoking,
+    source mesh of each triangle): a swap can leave a register empty, so a
+    mesh may give fewer than n - 2 triangles."""
+    tris, src = _tmesh_kernel(np.asarray(starts, np.int64), np.asarray(counts, np.int64),
+                              np.asarray(swap_before, np.bool_))
+    return tris, tris[:, 2].copy(), src
 
 
 def polylines(starts, counts, closed):
