@@ -76,13 +76,31 @@ def getlmbind(target):
     return b.index if b else 0
 
 
+_LMC_TARGETS = {K.LMC_EMISSION: (K.EMISSION,), K.LMC_AMBIENT: (K.AMBIENT,),
+                K.LMC_DIFFUSE: (K.DIFFUSE,), K.LMC_SPECULAR: (K.SPECULAR,),
+                K.LMC_AD: (K.AMBIENT, K.DIFFUSE)}
+
+
 @glcall(inside=True)
 def lmcolor(mode):
     """lmcolor(3G): where RGB colour calls go while lighting is on."""
     w = win("lmcolor")
     m = token("lmcolor", mode, _LMC, "lmcolor mode")
     machine.state_change(w)
-    w.st.lmcolor = m
+    st = w.st
+    # a colour already sent under a material mode stays in the bound material
+    # until the next material bind (reference 9.4), whatever lmcolor says next
+    if st.colour_since_bind and st.lmcolor in _LMC_TARGETS:
+        rgb = tuple(c / 255.0 for c in st.colour[:3])
+        ov = dict(st.mat_override)
+        for prop in _LMC_TARGETS[st.lmcolor]:
+            ov[prop] = rgb
+        if st.lmcolor in (K.LMC_DIFFUSE, K.LMC_AD):
+            ov[K.ALPHA] = (st.colour[3] / 255.0,)
+        st.mat_override = ov
+    if m != st.lmcolor:
+        st.colour_since_bind = False
+    st.lmcolor = m
     w.batch.dirty = True
 
 

@@ -713,10 +713,6 @@ def test_material_bind_discards_lmcolor_changes():
     _close(_rgba(), (214, 214, 214, 255))
 
 
-@pytest.mark.xfail(strict=True, reason="BUG: lmcolor material changes are applied only while "
-                   "that lmcolor mode is current (geometry/lighting.py _material_arrays reads the "
-                   "current colour at flush time), instead of modifying the bound material until "
-                   "the next material bind (reference 9.4)")
 @pytest.mark.parametrize("then", [LMC_COLOR, LMC_AMBIENT])
 def test_lmcolor_change_lasts_until_next_material_bind(then):
     """Reference 9.4: LMC_DIFFUSE colour calls set the bound material's

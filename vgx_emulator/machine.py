@@ -385,6 +385,7 @@ class VGX:
             else:
                 st.backmaterial = idx
             st.colour_since_bind = False
+            st.mat_override = {}       # binding a material discards lmcolor changes
             win.batch.dirty = True
         elif target == lighting_LMODEL:
             st.lmodel = index if index in self.defs[lighting.DEFLMODEL] else 0

@@ -45,6 +45,7 @@ class WindowState:
         self.lmodel = 0
         self.lights = {}
         self.lmcolor = 0               # LMC_COLOR
+        self.mat_override = {}         # material properties set through lmcolor
         # raster subsystem
         self.zbuffer = False
         self.zfunc = 3                 # ZF_LEQUAL

@@ -90,6 +90,9 @@ def _light(st, defs, eye4, attrs, xf, xforms):
     eye = np.divide(eye4[idx, :3], w, out=np.zeros((len(idx), 3)), where=w != 0)
     mdefs = defs[lighting.DEFMATERIAL]
     mat = mdefs[st.material]
+    if st.mat_override:
+        mat = dict(mat)
+        mat.update(st.mat_override)
     model = defs[lighting.DEFLMODEL][st.lmodel]
     lights = [(defs[lighting.DEFLIGHT].get(b.index, lighting.defaults(lighting.DEFLIGHT)), b)
               for _, b in sorted(st.lights.items())]
