@@ -33,8 +33,9 @@ def zfunction(func):
     """zfunction(3G): pass when ``incoming FUNC stored``; default ZF_LEQUAL."""
     w = win("zfunction")
     f = token("zfunction", func, _ZF, "z function")
-    machine.state_change(w)
-    w.st.zfunc = f
+    if w.st.zfunc != f:
+        machine.state_change(w)
+        w.st.zfunc = f
 
 
 @glcall
@@ -43,8 +44,9 @@ def zwritemask(mask):
     applies to z writes and zclear."""
     w = win("zwritemask")
     m = ulong(integer("zwritemask", mask, "mask")) & 0xFFFFFF
-    machine.state_change(w)
-    w.st.zwritemask = m
+    if w.st.zwritemask != m:
+        machine.state_change(w)
+        w.st.zwritemask = m
 
 
 @glcall

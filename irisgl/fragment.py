@@ -28,8 +28,9 @@ def _rgb_only(call):
 
 
 def _set_mask(w, m):
-    machine.state_change(w)
-    w.st.cmask = m
+    if w.st.cmask != m:
+        machine.state_change(w)
+        w.st.cmask = m
 
 
 @glcall
@@ -72,8 +73,9 @@ def blendfunction(sfactr, dfactr):
     d = token("blendfunction", dfactr, _BF_DST, "destination factor")
     if not w.st.rgb:
         fail("blendfunction", "blending in colour-map mode", "RGB mode only")
-    machine.state_change(w)
-    w.st.blendfunc = (s, d)
+    if w.st.blendfunc != (s, d):
+        machine.state_change(w)
+        w.st.blendfunc = (s, d)
 
 
 @glcall

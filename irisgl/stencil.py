@@ -23,8 +23,9 @@ def stencil(enable, ref, func, mask, fail_, pass_, zpass):
     w = win("stencil")
     on = boolean("stencil", enable)
     if not on:
-        machine.state_change(w)
-        w.st.stencil_on = False
+        if w.st.stencil_on:
+            machine.state_change(w)
+            w.st.stencil_on = False
         return
     if w.fb.stencil is None:
         fail("stencil", "no stencil planes are configured", "stensize(n > 0) then gconfig()")
@@ -33,9 +34,12 @@ def stencil(enable, ref, func, mask, fail_, pass_, zpass):
     m = ulong(integer("stencil", mask, "mask"))
     ops = tuple(token("stencil", o, _ST, f"{nm} operation")
                 for o, nm in ((fail_, "fail"), (pass_, "pass"), (zpass, "zpass")))
+    new = (r, f, m) + ops
+    if w.st.stencil_on and w.st.stencil == new:
+        return                            # nothing changes: no flush
     machine.state_change(w)
     w.st.stencil_on = True
-    w.st.stencil = (r, f, m) + ops
+    w.st.stencil = new
 
 
 @glcall

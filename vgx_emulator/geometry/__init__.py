@@ -185,7 +185,8 @@ def _assemble_filled(batch, pos, table):
 def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
     """Run the geometry pipeline over ``batch``; returns a WindowWork."""
     pos, attrs = batch.arrays()
-    eye4, clp, xf = _transform(pos, attrs, batch.xforms)
+    with np.errstate(all="ignore"):     # non-finite input is dropped with a VGXWarning below
+        eye4, clp, xf = _transform(pos, attrs, batch.xforms)
     tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
     col, back = _light(st, defs, eye4, attrs, xf, batch.xforms)
     bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
@@ -219,8 +220,13 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
         order = np.argsort(np.concatenate(keep_o), kind="stable")
         work.tris = np.concatenate(keep_t)[order]
         work.prov = np.concatenate(keep_p)[order]
-        xw, yw, zw = viewport.to_window(verts[:, :4], viewport_rect, near_far, snap)
-        ok = np.isfinite(xw) & np.isfinite(yw) & np.isfinite(zw)
+        # only vertices that a kept triangle uses are converted: an original
+        # vertex replaced by clipping may lie at w <= 0 or far outside the band
+        used = np.zeros(len(verts), bool)
+        used[work.tris.ravel()] = True
+        with np.errstate(all="ignore"):
+            xw, yw, zw = viewport.to_window(verts[:, :4], viewport_rect, near_far, snap)
+        ok = used & np.isfinite(xw) & np.isfinite(yw) & np.isfinite(zw)
         xw, yw, zw = np.where(ok, xw, 0.0), np.where(ok, yw, 0.0), np.where(ok, zw, 0.0)
         work.X = viewport.to_fixed(xw)
         work.Y = viewport.to_fixed(yw)
@@ -229,7 +235,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
         work.CB = np.ascontiguousarray(verts[:, 8:12]) if back is not None else work.C
         if tc is not None:
             k = 12 if back is not None else 8
-            w = np.where(ok, verts[:, 3], 1.0)
+            w = np.where(ok & (verts[:, 3] != 0), verts[:, 3], 1.0)
             work.TC = np.ascontiguousarray(
                 np.stack((verts[:, k] / w, verts[:, k + 1] / w, 1.0 / w), axis=1))
     elif batch.klass == LINES:
@@ -262,6 +268,7 @@ def _window_rows(rows, vp, near_far, snap):
     """Clip-space rows (x, y, z, w, r, g, b, a) -> window rows (x, y, z, r, g, b, a)."""
     out = np.empty((len(rows), 7))
     if len(rows):
-        out[:, 0], out[:, 1], out[:, 2] = viewport.to_window(rows[:, :4], vp, near_far, snap)
+        with np.errstate(all="ignore"):
+            out[:, 0], out[:, 1], out[:, 2] = viewport.to_window(rows[:, :4], vp, near_far, snap)
         out[:, 3:7] = rows[:, 4:8]
     return out

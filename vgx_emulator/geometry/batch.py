@@ -31,7 +31,8 @@ class Transform:
     def __init__(self, modelview, projection):
         self.modelview = modelview
         self.projection = projection
-        self.clip = modelview @ projection
+        with np.errstate(all="ignore"):
+            self.clip = modelview @ projection
 
 
 class VertexBatch:

@@ -24,7 +24,8 @@ def as_matrix(m):
 
 def premultiply(t, c):
     """``T . C`` in float64, stored as float32."""
-    return (np.asarray(t, np.float64) @ np.asarray(c, np.float64)).astype(np.float32)
+    with np.errstate(all="ignore"):       # non-finite matrices are reported at the flush
+        return (np.asarray(t, np.float64) @ np.asarray(c, np.float64)).astype(np.float32)
 
 
 def translation(x, y, z):
