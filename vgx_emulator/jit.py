@@ -19,6 +19,16 @@ def njit(fn=None, **extra):
     return numba.njit(**opts)(fn)
 
 
+def helper(fn):
+    """A small function inlined into kernels.  Not cached on its own: numba's
+    cache of a function is keyed on its own file only, so a cached helper
+    would keep old code inside kernels after an edit.  Kernels that use
+    helpers are built by factories whose closure holds KERNEL_SOURCE_HASH
+    (raster/variants.py), which keys their cache on every helper's source."""
+    opts = dict(_opts, cache=False)
+    return numba.njit(**opts)(fn)
+
+
 def pnjit(fn):
     """A kernel whose outer loop is a ``prange`` over framebuffer bands."""
     return numba.njit(parallel=config.PARALLEL, **_opts)(fn)

@@ -26,10 +26,10 @@ replaces blending ([S], reference 7).
 """
 import math
 
-from ..jit import njit
+from ..jit import helper
 
 
-@njit
+@helper
 def _factor(f, is_src, sc, dc, sa, da):
     """The factor for one component: sc, dc = this component of source and
     destination; sa, da = alphas (all 0..1)."""
@@ -52,7 +52,7 @@ def _factor(f, is_src, sc, dc, sa, da):
     return min(sa, 1.0 - da)    # BF_MIN_SA_MDA
 
 
-@njit
+@helper
 def blend_words(fs, fd, src, dst):
     sa = ((src >> 24) & 0xFF) / 255.0
     da = ((dst >> 24) & 0xFF) / 255.0
@@ -67,7 +67,7 @@ def blend_words(fs, fd, src, dst):
     return out
 
 
-@njit
+@helper
 def logic_op(op, s, d):
     if op == 0:
         r = 0

@@ -8,12 +8,12 @@ holds signed 24-bit values sign-extended in int32 (Decision 3).
 """
 import math
 
-from ..jit import njit
+from ..jit import helper
 
 ZF_NEVER, ZF_LESS, ZF_EQUAL, ZF_LEQUAL, ZF_GREATER, ZF_NOTEQUAL, ZF_GEQUAL, ZF_ALWAYS = range(8)
 
 
-@njit
+@helper
 def compare(func, a, b):
     """``a FUNC b`` for the 8 IRIS GL comparison functions (ZF_*, SF_*, AF_*
     share the numbering)."""
@@ -34,7 +34,7 @@ def compare(func, a, b):
     return a >= b
 
 
-@njit
+@helper
 def quantize(z, zlo, zhi):
     """Window z -> stored integer: round to nearest, clamp to [zlo, zhi]."""
     q = math.floor(z + 0.5)
@@ -45,7 +45,7 @@ def quantize(z, zlo, zhi):
     return int(q)
 
 
-@njit
+@helper
 def masked_write(stored, value, mask):
     """zwritemask: keep stored bits where mask is 0; result sign-extended 24-bit."""
     v = ((stored & ~mask) | (value & mask)) & 0xFFFFFF

@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from ..jit import njit
+from ..jit import helper
 from . import blend as _blend
 from . import depth
 from . import stencil as _stencil
@@ -37,7 +37,7 @@ from . import stencil as _stencil
 NPARAMS = 26
 
 
-@njit
+@helper
 def pack_rgba(r, g, b, a):
     """0..255 floats -> 0xAABBGGRR, rounded to nearest and clamped."""
     ri = int(math.floor(min(max(r, 0.0), 255.0) + 0.5))
@@ -47,14 +47,14 @@ def pack_rgba(r, g, b, a):
     return (ai << 24) | (bi << 16) | (gi << 8) | ri
 
 
-@njit
+@helper
 def colour_word(cmode, r, g, b, a):
     if cmode:
         return int(math.floor(r + 0.5)) & 0xFFF
     return pack_rgba(r, g, b, a)
 
 
-@njit
+@helper
 def write_colour(cb, y, x, word, blend, logic, cmask, cmode, ip):
     """Blend or logicop against this buffer's pixel, then the writemask."""
     old = np.int64(cb[y, x])
@@ -71,7 +71,7 @@ def write_colour(cb, y, x, word, blend, logic, cmask, cmode, ip):
     cb[y, x] = new
 
 
-@njit
+@helper
 def fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, pattern, cmask,
              x, y, z, r, g, b, a, planes, ip):
     """One fragment at window (x, y) through every enabled stage."""

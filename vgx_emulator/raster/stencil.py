@@ -14,12 +14,12 @@ ST_INVERT  ~s within the n planes
 The result is written only in the planes swritemask enables:
 ``s' = (s & ~wm) | (op(s) & wm)``.
 """
-from ..jit import njit
+from ..jit import helper
 
 ST_KEEP, ST_ZERO, ST_REPLACE, ST_INCR, ST_DECR, ST_INVERT = range(6)
 
 
-@njit
+@helper
 def apply(op, s, ref, smax, wmask):
     s = int(s)
     if op == ST_KEEP:

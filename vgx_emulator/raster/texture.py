@@ -18,14 +18,14 @@ machine substitutes MODULATE elsewhere).
 """
 import math
 
-from ..jit import njit
+from ..jit import helper
 
 # slots of the texture parameter vector
 T_WRAPS, T_WRAPT, T_ENV, T_CR, T_CG, T_CB, T_CA = range(7)
 ENV_MODULATE, ENV_DECAL, ENV_BLEND = 0, 1, 2
 
 
-@njit
+@helper
 def _wrap(i, n, repeat):
     if repeat:
         i = i % n
@@ -39,7 +39,7 @@ def _wrap(i, n, repeat):
     return i
 
 
-@njit
+@helper
 def sample(texels, info, level, bilinear, s, t, rs, rt):
     """RGBA (0..255 floats) of level ``level`` at (s, t)."""
     off = info[1 + 3 * level]
@@ -77,7 +77,7 @@ def sample(texels, info, level, bilinear, s, t, rs, rt):
     return out[0], out[1], out[2], out[3]
 
 
-@njit
+@helper
 def environment(env, r, g, b, a, tr, tg, tb, ta, cr, cg, cb):
     """The texture environment; colours 0..255, constant colour 0..1."""
     if env == ENV_DECAL:

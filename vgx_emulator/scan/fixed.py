@@ -20,19 +20,19 @@ rule is applied by subtracting 1 from C of the edges not owned and testing
 E >= 0 in integers.  Magnitudes: |coord| < 2**24 fixed, so |E| < 2**50.
 """
 from .. import config
-from ..jit import njit
+from ..jit import helper
 
 SHIFT = config.SUBPIXEL_BITS
 
 
-@njit
+@helper
 def owns_edge(ax, ay, bx, by):
     """True when the directed edge a -> b of a CCW triangle is left or bottom."""
     dy = by - ay
     return dy < 0 or (dy == 0 and bx > ax)
 
 
-@njit
+@helper
 def edge_coefficients(ax, ay, bx, by):
     """(A, B, C) of E_ab(p) = A px + B py + C, with the fill-rule bias in C."""
     a = ay - by

@@ -26,74 +26,83 @@ from .fixed import SHIFT, edge_coefficients
 CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
 
 
-@njit
-def setup_triangles(X, Y, tris, cull, sx0, sx1, sy0, sy1):
-    """Edge equations and boxes for T triangles.
+def _make_setup():
+    """setup_triangles, compiled with KERNEL_SOURCE_HASH as a closure constant
+    so that its disk cache follows fixed.py as well (jit.helper)."""
+    src_hash = KERNEL_SOURCE_HASH
 
-    Returns (edges (T, 3, 3) int64, verts (T, 3) int64 in CCW order,
-    box (T, 4) int64 [x0, x1, y0, y1] in pixels, inv_area (T,), back (T,)
-    bool, valid (T,) bool).  Edge k is opposite vertex k, so E_k / area is
-    the barycentric weight of vertex k.
-    """
-    t = tris.shape[0]
-    edges = np.zeros((t, 3, 3), np.int64)
-    verts = np.zeros((t, 3), np.int64)
-    box = np.zeros((t, 4), np.int64)
-    inv_area = np.zeros(t)
-    back = np.zeros(t, np.bool_)
-    valid = np.zeros(t, np.bool_)
-    half = (1 << SHIFT) >> 1
-    for i in range(t):
-        a = tris[i, 0]
-        b = tris[i, 1]
-        c = tris[i, 2]
-        area = (X[b] - X[a]) * (Y[c] - Y[a]) - (Y[b] - Y[a]) * (X[c] - X[a])
-        if area == 0:
-            continue
-        is_back = area < 0          # clockwise on the screen (backface(3G))
-        if is_back and (cull & 1):
-            continue
-        if (not is_back) and (cull & 2):
-            continue
-        if is_back:
-            b, c = c, b
-            area = -area
-        verts[i, 0] = a
-        verts[i, 1] = b
-        verts[i, 2] = c
-        # edge k opposite vertex k: (b->c), (c->a), (a->b)
-        e0 = edge_coefficients(X[b], Y[b], X[c], Y[c])
-        e1 = edge_coefficients(X[c], Y[c], X[a], Y[a])
-        e2 = edge_coefficients(X[a], Y[a], X[b], Y[b])
-        edges[i, 0, 0] = e0[0]
-        edges[i, 0, 1] = e0[1]
-        edges[i, 0, 2] = e0[2]
-        edges[i, 1, 0] = e1[0]
-        edges[i, 1, 1] = e1[1]
-        edges[i, 1, 2] = e1[2]
-        edges[i, 2, 0] = e2[0]
-        edges[i, 2, 1] = e2[1]
-        edges[i, 2, 2] = e2[2]
-        xmin = min(X[a], min(X[b], X[c]))
-        xmax = max(X[a], max(X[b], X[c]))
-        ymin = min(Y[a], min(Y[b], Y[c]))
-        ymax = max(Y[a], max(Y[b], Y[c]))
-        # pixels whose centre can lie inside: ceil(min), floor(max)
-        x0 = max((xmin + (1 << SHIFT) - 1) >> SHIFT, sx0)
-        x1 = min(xmax >> SHIFT, sx1)
-        y0 = max((ymin + (1 << SHIFT) - 1) >> SHIFT, sy0)
-        y1 = min(ymax >> SHIFT, sy1)
-        if x0 > x1 or y0 > y1:
-            continue
-        box[i, 0] = x0
-        box[i, 1] = x1
-        box[i, 2] = y0
-        box[i, 3] = y1
-        inv_area[i] = 1.0 / area
-        back[i] = is_back
-        valid[i] = True
-    return edges, verts, box, inv_area, back, valid
+    @njit
+    def setup_triangles(X, Y, tris, cull, sx0, sx1, sy0, sy1):
+        """Edge equations and boxes for T triangles.
 
+        Returns (edges (T, 3, 3) int64, verts (T, 3) int64 in CCW order,
+        box (T, 4) int64 [x0, x1, y0, y1] in pixels, inv_area (T,), back (T,)
+        bool, valid (T,) bool).  Edge k is opposite vertex k, so E_k / area is
+        the barycentric weight of vertex k.
+        """
+        _ = src_hash
+        t = tris.shape[0]
+        edges = np.zeros((t, 3, 3), np.int64)
+        verts = np.zeros((t, 3), np.int64)
+        box = np.zeros((t, 4), np.int64)
+        inv_area = np.zeros(t)
+        back = np.zeros(t, np.bool_)
+        valid = np.zeros(t, np.bool_)
+        for i in range(t):
+            a = tris[i, 0]
+            b = tris[i, 1]
+            c = tris[i, 2]
+            area = (X[b] - X[a]) * (Y[c] - Y[a]) - (Y[b] - Y[a]) * (X[c] - X[a])
+            if area == 0:
+                continue
+            is_back = area < 0          # clockwise on the screen (backface(3G))
+            if is_back and (cull & 1):
+                continue
+            if (not is_back) and (cull & 2):
+                continue
+            if is_back:
+                b, c = c, b
+                area = -area
+            verts[i, 0] = a
+            verts[i, 1] = b
+            verts[i, 2] = c
+            # edge k opposite vertex k: (b->c), (c->a), (a->b)
+            e0 = edge_coefficients(X[b], Y[b], X[c], Y[c])
+            e1 = edge_coefficients(X[c], Y[c], X[a], Y[a])
+            e2 = edge_coefficients(X[a], Y[a], X[b], Y[b])
+            edges[i, 0, 0] = e0[0]
+            edges[i, 0, 1] = e0[1]
+            edges[i, 0, 2] = e0[2]
+            edges[i, 1, 0] = e1[0]
+            edges[i, 1, 1] = e1[1]
+            edges[i, 1, 2] = e1[2]
+            edges[i, 2, 0] = e2[0]
+            edges[i, 2, 1] = e2[1]
+            edges[i, 2, 2] = e2[2]
+            xmin = min(X[a], min(X[b], X[c]))
+            xmax = max(X[a], max(X[b], X[c]))
+            ymin = min(Y[a], min(Y[b], Y[c]))
+            ymax = max(Y[a], max(Y[b], Y[c]))
+            # pixels whose centre can lie inside: ceil(min), floor(max)
+            x0 = max((xmin + (1 << SHIFT) - 1) >> SHIFT, sx0)
+            x1 = min(xmax >> SHIFT, sx1)
+            y0 = max((ymin + (1 << SHIFT) - 1) >> SHIFT, sy0)
+            y1 = min(ymax >> SHIFT, sy1)
+            if x0 > x1 or y0 > y1:
+                continue
+            box[i, 0] = x0
+            box[i, 1] = x1
+            box[i, 2] = y0
+            box[i, 3] = y1
+            inv_area[i] = 1.0 / area
+            back[i] = is_back
+            valid[i] = True
+        return edges, verts, box, inv_area, back, valid
+
+    return setup_triangles
+
+
+setup_triangles = _make_setup()
 
 _kernels = {}
 
