@@ -18,8 +18,9 @@ from pathlib import Path
 from .display.png import write_png
 from .runner import run_program
 
-PROGRAMS = ["williams_shadow_zbuffer", "tessman_flat_shadows", "bentley_two_algorithms",
-            "hart_shadow_buffer", "heidmann_shadow_volumes", "four_spheres", "teapot"]
+PROGRAMS = ["williams_shadow_zbuffer", "tessman_flat_shadows", "bentley_ground_shadows",
+            "bentley_shadow_zbuffer", "hart_shadow_buffer", "heidmann_shadow_volumes",
+            "four_spheres", "teapot"]
 
 
 def _figures_of(path):
