@@ -157,6 +157,15 @@ def patch_setup(call):
     return (_basis(call, u), _basis(call, v)) + s["patchcurves"] + s["patchprecision"]
 
 
+def patch_bases(call):
+    """(ubasis, vbasis) of the current patchbasis, or GLError."""
+    s = _state()
+    if s["patchbasis"] is None:
+        fail(call, "no patch basis", "call patchbasis first")
+    u, v = s["patchbasis"]
+    return _basis(call, u), _basis(call, v)
+
+
 @glcall
 def patch(gx, gy, gz):
     """patch(3G): the web of curves of a bicubic patch (one matrix per coordinate)."""

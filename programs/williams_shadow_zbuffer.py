@@ -22,7 +22,8 @@ Figures (``--figure``):
      is not specified further)
   6  the filtered shadow applied to fig. 1 as a translucent shadow (post-process)
   correct  the correct form: shadowed points shaded by ambient light only
-  24bit    fig. 3's bias with 24-bit depth: the moire is gone
+  24bit    fig. 3's bias with 24-bit depth: the moire stays (x, y quantization
+           dominates: "the problem is much greater than in Z")
   robot    curved shadows on curved surfaces: the Utah teapot's patches
            (Williams' robot is not available) over a curved floor
 
@@ -30,8 +31,12 @@ Reconstructed (the paper gives no numbers): the scene of programs/four_spheres
 (light at infinity turned 100 degrees to the left of the viewer's bearing);
 a 512 x 512 light view ("nine bits of resolution in X and Y"), orthographic
 since the light is at infinity; 16-bit depth as in the paper's pictures
-(the VGX has 24: the ``24bit`` figure); biases in light-window z units of
-the 24-bit range (one 16-bit quantum = 256).
+(the VGX has 24: the ``24bit`` figure); the reduced bias of fig. 3 is a
+quarter of a 16-bit quantum (64 units of the 24-bit range); the increased
+bias of figs. 4-6 is 0.04 world units along the light (about two texels of
+the light view at the spheres' slope), because here, as Williams observes,
+the lateral quantization (10 units over 512 pixels) dominates the depth
+quantization.
 """
 import argparse
 import sys
@@ -63,14 +68,19 @@ FIGURES = [
      "caption": "Williams' \"correct\" form: points in shadow shaded without the light, "
                 "so no highlight survives in shadow."},
     {"name": "24bit", "args": ["--figure", "24bit"],
-     "caption": "Fig. 3's bias with the VGX's 24-bit z: the quantization moire disappears."},
+     "caption": "Fig. 3's bias with the VGX's 24-bit z: the moire stays, because the lateral "
+                "quantization (9 bits in x and y) dominates, as Williams observes."},
+    {"name": "curved", "args": ["--figure", "correct", "--scene", "teapot", "--bits", "24"],
+     "caption": "In the spirit of fig. 8: curved shadows on curved surfaces. The Utah "
+                "teapot's 32 bicubic patches shadow themselves and a bicubic floor "
+                "(correct form, 24-bit z, filtered)."},
 ]
 
 WIDTH, HEIGHT = 640, 480
 LSIZE = 512                                  # the light view, 9 bits in x and y
 LIGHT_DIST = 20.0
 BIAS_REDUCED = 64                            # a quarter of a 16-bit quantum
-BIAS_INCREASED = 3 * 256                     # three 16-bit quanta
+BIAS_INCREASED = 3 * 256                     # three 16-bit quanta (--bias overrides)
 DITHER_SEED = 1978
 
 
@@ -78,6 +88,10 @@ def parse(argv):
     ap = argparse.ArgumentParser(description="Williams' shadow z-buffer")
     ap.add_argument("--figure", default="6")
     ap.add_argument("--bits", type=int, default=None, help="depth bits (16 or 24)")
+    ap.add_argument("--scene", choices=sorted(SCENES), default="spheres")
+    ap.add_argument("--bias", type=float, default=None,
+                    help="increased bias in world units along the light (default: 3 "
+                         "16-bit quanta for the spheres, 0.08 for the teapot)")
     return ap.parse_args(argv)
 
 
@@ -94,6 +108,44 @@ def draw_spheres():
         fs.sphere(c[0], c[1], c[2], 1.0)
 
 
+# -- the curved-surfaces scene: the teapot's patches on a bicubic floor -------
+FLOOR_MAT, GLAZE_MAT = 2, 3
+_FLOOR_Y = [[0.0, 0.5, -0.3, 0.2], [0.4, -0.6, 0.5, -0.2],
+            [-0.3, 0.6, -0.5, 0.3], [0.1, -0.2, 0.4, 0.0]]
+
+
+def floor_patch():
+    """A 10 x 10 wavy Bezier floor; u runs to +x, v to -z, so dP/du x dP/dv is up."""
+    xs = [-5.0, -5.0 / 3, 5.0 / 3, 5.0]
+    gx = [xs[:] for _ in range(4)]
+    gz = [[5.0 - 10.0 * i / 3] * 4 for i in range(4)]
+    gy = [[y - 0.2 for y in row] for row in _FLOOR_Y]
+    return gx, gy, gz
+
+
+def draw_teapot_scene():
+    from programs.teapot_data import patch_geometry
+    from vgx_emulator.surfaces import draw_patch_surface
+    defbasis(1, [[-1, 3, -3, 1], [3, -6, 3, 0], [-3, 3, 0, 0], [1, 0, 0, 0]])
+    patchbasis(1, 1)
+    lmbind(MATERIAL, FLOOR_MAT)
+    gx, gy, gz = floor_patch()
+    draw_patch_surface(gx, gy, gz, 24, 24)
+    lmbind(MATERIAL, GLAZE_MAT)
+    for px, py, pz in patch_geometry():
+        draw_patch_surface(px, py, pz, 8, 8)
+    lmbind(MATERIAL, fs.SPHERE_MAT)
+
+
+#: scene -> (draw, eye, look-at point, light direction, light box half size)
+SCENES = {
+    "spheres": (draw_spheres, (0.0, 3.0, 12.0), (0.0, 0.0, 0.0), fs.LIGHT_DIR, 5.0),
+    "teapot": (draw_teapot_scene, (6.0, 6.0, 10.0), (0.0, 1.0, 0.0),
+               [-0.6, 1.0, 0.5, 0.0], 7.0),
+}
+SCENE = SCENES["spheres"]
+
+
 def light_view():
     """Pass 1: the z-buffer seen from the light (no shading: wmpack(0))."""
     prefsize(LSIZE, LSIZE)
@@ -102,13 +154,16 @@ def light_view():
     gconfig()
     zbuffer(TRUE)
     mmode(MVIEWING)
-    ortho(-5.0, 5.0, -5.0, 5.0, LIGHT_DIST - 6.0, LIGHT_DIST + 6.0)
+    draw, _, at, d, half = SCENE
+    n = float(np.linalg.norm(d[:3]))
+    d = [c / n for c in d[:3]]
+    ortho(-half, half, -half, half, LIGHT_DIST - half - 1.0, LIGHT_DIST + half + 1.0)
     loadmatrix(np.eye(4))
-    d = fs.LIGHT_DIR
-    lookat(d[0] * LIGHT_DIST, d[1] * LIGHT_DIST, d[2] * LIGHT_DIST, 0.0, 0.0, 0.0, 0)
+    lookat(at[0] + d[0] * LIGHT_DIST, at[1] + d[1] * LIGHT_DIST, at[2] + d[2] * LIGHT_DIST,
+           at[0], at[1], at[2], 0)
     wmpack(0)
     zclear()
-    draw_spheres()
+    draw()
     wmpack(0xFFFFFFFF)
     return win, sb.read_depth(LSIZE, LSIZE), current_mvp()
 
@@ -116,10 +171,11 @@ def light_view():
 def observer_view(ambient_only=False):
     """Pass 2: the observer's shaded view (or ambient-only for the correct form)."""
     czclear(0x00000000, getgdesc(GD_ZMAX))
+    draw, eye, at, _, _ = SCENE
     loadmatrix(np.eye(4))
-    lookat(0.0, 3.0, 12.0, 0.0, 0.0, 0.0, 0)
+    lookat(eye[0], eye[1], eye[2], at[0], at[1], at[2], 0)
     lmbind(LIGHT0, 0 if ambient_only else fs.SUN)
-    draw_spheres()
+    draw()
     return sb.read_colour(WIDTH, HEIGHT), sb.read_depth(WIDTH, HEIGHT), current_mvp()
 
 
@@ -145,7 +201,13 @@ def mask_image(mask):
     return np.repeat(v[..., None], 3, axis=-1)
 
 
-def compose(figure, bits):
+def bias_units(world):
+    """A distance along the light direction in light-window z units."""
+    half = SCENE[4]
+    return world / (2.0 * (half + 1.0)) * float(sb.ZMAX - sb.ZMIN)
+
+
+def compose(figure, bits, bias=None):
     lwin, zl, mvp_l = light_view()
     winset(EYE)
     lit, ze, mvp_e = observer_view()
@@ -159,7 +221,8 @@ def compose(figure, bits):
     b = bits or (24 if figure == "24bit" else 16)
     if figure in ("3", "24bit"):
         return mask_image(shadow_mask(ze, mvp_e, zl, mvp_l, b, BIAS_REDUCED)), None
-    m4 = shadow_mask(ze, mvp_e, zl, mvp_l, b, BIAS_INCREASED, bilinear=True, dither=True)
+    big = BIAS_INCREASED if bias is None else bias_units(bias)
+    m4 = shadow_mask(ze, mvp_e, zl, mvp_l, b, big, bilinear=True, dither=True)
     if figure == "4":
         return mask_image(m4), None
     m5 = sb.box_blur(m4, 2)
@@ -175,9 +238,22 @@ def compose(figure, bits):
     raise SystemExit(f"unknown figure {figure!r}")
 
 
+def define_lighting(scene):
+    fs.define_lighting()
+    if scene == "teapot":
+        d = SCENES["teapot"][3]
+        lmdef(DEFLIGHT, fs.SUN, 0, [LCOLOR, 1.0, 1.0, 1.0, POSITION] + list(d) + [LMNULL])
+        lmdef(DEFLMODEL, fs.MODEL, 0, [AMBIENT, 0.25, 0.25, 0.25, LMNULL])
+    lmdef(DEFMATERIAL, FLOOR_MAT, 0, [AMBIENT, 0.3, 0.35, 0.3, DIFFUSE, 0.45, 0.6, 0.45,
+                                      LMNULL])
+    lmdef(DEFMATERIAL, GLAZE_MAT, 0, [AMBIENT, 0.4, 0.3, 0.2, DIFFUSE, 0.85, 0.55, 0.3,
+                                      SPECULAR, 0.6, 0.6, 0.6, SHININESS, 40.0, LMNULL])
+
+
 def main(argv=None):
-    global EYE
+    global EYE, SCENE
     a = parse(sys.argv[1:] if argv is None else argv)
+    SCENE = SCENES[a.scene]
     prefsize(WIDTH, HEIGHT)
     EYE = winopen("williams")
     RGBmode()
@@ -185,13 +261,14 @@ def main(argv=None):
     zbuffer(TRUE)
     mmode(MVIEWING)
     perspective(400, WIDTH / HEIGHT, 1.0, 50.0)
-    fs.define_lighting()
+    define_lighting(a.scene)
     lmbind(MATERIAL, fs.SPHERE_MAT)
     lmbind(LMODEL, fs.MODEL)
     while True:
         dev, val = qread()
         if dev == REDRAW and val == EYE:
-            img, show = compose(a.figure, a.bits)
+            bias = a.bias if a.bias is not None else (0.08 if a.scene == "teapot" else 0.04)
+            img, show = compose(a.figure, a.bits, bias)
             winset(show or EYE)
             w, h = getsize()
             sb.write_image(img, w, h)

@@ -16,8 +16,8 @@ def patch_mesh(gx, gy, gz, usegs=8, vsegs=8, ubasis=None, vbasis=None):
     """Points (vsegs+1, usegs+1, 3) and unit normals of a patch.  Without
     explicit bases, the current ``patchbasis`` of irisgl is used."""
     if ubasis is None or vbasis is None:
-        from irisgl.curves import patch_setup
-        ubasis, vbasis = patch_setup("patch_mesh")[:2]
+        from irisgl.curves import patch_bases
+        ubasis, vbasis = patch_bases("patch_mesh")
     return patch_surface(np.asarray(ubasis, np.float64), np.asarray(vbasis, np.float64),
                          gx, gy, gz, usegs, vsegs)
 
