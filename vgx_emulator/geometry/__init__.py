@@ -187,10 +187,13 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
     pos, attrs = batch.arrays()
     with np.errstate(all="ignore"):     # non-finite input is dropped with a VGXWarning below
         eye4, clp, xf = _transform(pos, attrs, batch.xforms)
-    tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
+    with np.errstate(all="ignore"):
+        tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
     col, back = _light(st, defs, eye4, attrs, xf, batch.xforms)
     bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
             & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))
+    if tc is not None:
+        bad |= ~np.isfinite(tc).all(axis=1)
     gx, gy = viewport.guard_factors(viewport_rect)
     work = WindowWork(klass=batch.klass, twoside=back is not None)
     table = batch.prim_table()
@@ -259,8 +262,8 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
         rows = np.concatenate((clp[idx], col[idx]), axis=1)
         work.points = _window_rows(rows, viewport_rect, near_far, snap)
     if work.dropped:
-        warn("v*/n3f/c*", f"{work.dropped} primitive(s) with a non-finite vertex, "
-             "normal, colour or transformed position dropped")
+        warn("v*/n3f/c*/t*", f"{work.dropped} primitive(s) with a non-finite vertex, "
+             "normal, colour, texture coordinate or transformed position dropped")
     return work
 
 
