@@ -10,13 +10,17 @@ the projected polygons per light is that light's shadow.  Ground colours come
 from the lighting equation (reference 9.5): ambient Am*Alm, plus Dm*Ci*N.L for
 each light that sees the pixel.
 """
-import math
 
 import numpy as np
 import pytest
 
 import programs.bentley_ground_shadows as B
 from vgx_emulator import run_program
+
+try:
+    from reference.camera import lookat_matrix, perspective_matrix
+except ImportError:
+    from tests.reference.camera import lookat_matrix, perspective_matrix
 
 PROGRAM = B.__file__
 W, H = B.WIDTH, B.HEIGHT
@@ -27,23 +31,6 @@ TOL = 2
 
 
 # -- camera ---------------------------------------------------------------------
-def lookat_matrix(v, p):
-    v, p = np.asarray(v, float), np.asarray(p, float)
-    f = (p - v) / np.linalg.norm(p - v)
-    s = np.cross(f, (0.0, 1.0, 0.0))
-    s /= np.linalg.norm(s)
-    u = np.cross(s, f)
-    R = np.identity(4)
-    R[:3, 0], R[:3, 1], R[:3, 2] = s, u, -f
-    Tm = np.identity(4)
-    Tm[3, :3] = -v
-    return Tm @ R
-
-
-def perspective_matrix(fovy, aspect, n, f):
-    c = 1.0 / math.tan(math.radians(fovy / 20.0))
-    return np.array([[c / aspect, 0, 0, 0], [0, c, 0, 0],
-                     [0, 0, -(f + n) / (f - n), -1], [0, 0, -2 * f * n / (f - n), 0]])
 
 
 def view_matrix():

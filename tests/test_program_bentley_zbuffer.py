@@ -18,6 +18,11 @@ import programs.bentley_shadow_zbuffer as P
 from programs import bentley_ground_shadows as B
 from vgx_emulator import run_program
 
+try:
+    from reference.camera import lookat_matrix, perspective_matrix
+except ImportError:
+    from tests.reference.camera import lookat_matrix, perspective_matrix
+
 W, H = P.WIDTH, P.HEIGHT
 AMB_MODEL = np.array(P.AMBIENT_MODEL)
 
@@ -29,23 +34,6 @@ def run(figure, *extra):
 
 
 # -- the eye, rebuilt from the reference's matrix conventions ---------------------
-def lookat_matrix(v, p):
-    v, p = np.asarray(v, float), np.asarray(p, float)
-    f = (p - v) / np.linalg.norm(p - v)
-    s = np.cross(f, (0.0, 1.0, 0.0))
-    s /= np.linalg.norm(s)
-    u = np.cross(s, f)
-    R = np.identity(4)
-    R[:3, 0], R[:3, 1], R[:3, 2] = s, u, -f
-    Tm = np.identity(4)
-    Tm[3, :3] = -v
-    return Tm @ R
-
-
-def perspective_matrix(fovy, aspect, n, f):
-    c = 1.0 / math.tan(math.radians(fovy / 20.0))
-    return np.array([[c / aspect, 0, 0, 0], [0, c, 0, 0],
-                     [0, 0, -(f + n) / (f - n), -1], [0, 0, -2 * f * n / (f - n), 0]])
 
 
 def camera(eye, ref):

@@ -8,7 +8,6 @@ the sphere's centre projected from the light onto the ground, then through
 the eye's lookat and perspective (reference section 2) to window pixels.
 """
 import ast
-import math
 import re
 from pathlib import Path
 
@@ -18,29 +17,17 @@ import pytest
 import programs.hart_shadow_buffer as H
 from vgx_emulator import run_program
 
+try:
+    from reference.camera import lookat_matrix, perspective_matrix
+except ImportError:
+    from tests.reference.camera import lookat_matrix, perspective_matrix
+
 PROGRAM = H.__file__
 W, HT = H.WIDTH, H.HEIGHT
 ZMIN, ZMAX = -0x800000, 0x7FFFFF
 
 
 # -- camera (reference section 2, row vectors) ----------------------------------
-def lookat_matrix(v, p):
-    v, p = np.asarray(v, float), np.asarray(p, float)
-    f = (p - v) / np.linalg.norm(p - v)
-    s = np.cross(f, (0.0, 1.0, 0.0))
-    s /= np.linalg.norm(s)
-    u = np.cross(s, f)
-    R = np.identity(4)
-    R[:3, 0], R[:3, 1], R[:3, 2] = s, u, -f
-    T = np.identity(4)
-    T[3, :3] = -v
-    return T @ R
-
-
-def perspective_matrix(fovy, aspect, n, f):
-    c = 1.0 / math.tan(math.radians(fovy / 20.0))
-    return np.array([[c / aspect, 0, 0, 0], [0, c, 0, 0],
-                     [0, 0, -(f + n) / (f - n), -1], [0, 0, -2 * f * n / (f - n), 0]])
 
 
 EYE_MVP = lookat_matrix(H.EYE, H.EYE_AT) @ perspective_matrix(H.FOVY, W / HT, H.NEAR, H.FAR)
