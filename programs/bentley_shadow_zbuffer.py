@@ -206,12 +206,8 @@ def view_lookat(eye, ref):
     rotate(-900, 'x')
 
 
-def current_mvp():
-    """ModelView . Projection of the current window (row vectors)."""
-    mmode(MPROJECTION)
-    p = getmatrix()
-    mmode(MVIEWING)
-    return np.asarray(getmatrix(), np.float64) @ np.asarray(p, np.float64)
+current_mvp = sb.current_mvp
+
 
 
 # -- drawing --------------------------------------------------------------------

@@ -319,12 +319,8 @@ def define_lighting():
     lmdef(DEFLMODEL, MODEL, 0, [AMBIENT, 0.3, 0.3, 0.32, LMNULL])
 
 
-def current_mvp():
-    """ModelView . Projection of the current window (row vectors)."""
-    mmode(MPROJECTION)
-    p = getmatrix()
-    mmode(MVIEWING)
-    return np.asarray(getmatrix(), np.float64) @ np.asarray(p, np.float64)
+current_mvp = sb.current_mvp
+
 
 
 # -- the windows ---------------------------------------------------------------

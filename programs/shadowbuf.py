@@ -13,11 +13,20 @@ the viewport maps NDC to window pixels with pixel centres at integers.
 """
 import numpy as np
 
-from irisgl import (SRC_AUTO, SRC_ZBUFFER, getgdesc, GD_ZMAX, GD_ZMIN, lrectread,
-                    readsource)
+from irisgl import (MPROJECTION, MVIEWING, SRC_AUTO, SRC_ZBUFFER, getgdesc, getmatrix,
+                    GD_ZMAX, GD_ZMIN, lrectread, mmode, readsource)
 
 ZMIN = getgdesc(GD_ZMIN)
 ZMAX = getgdesc(GD_ZMAX)
+
+
+def current_mvp():
+    """ModelView . Projection of the current window (row vectors), read with
+    getmatrix in MPROJECTION and MVIEWING; the window is left in MVIEWING."""
+    mmode(MPROJECTION)
+    p = getmatrix()
+    mmode(MVIEWING)
+    return np.asarray(getmatrix(), np.float64) @ np.asarray(p, np.float64)
 
 
 def read_depth(width, height):

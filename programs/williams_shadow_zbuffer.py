@@ -95,12 +95,8 @@ def parse(argv):
     return ap.parse_args(argv)
 
 
-def current_mvp():
-    """ModelView . Projection of the current window (row vectors)."""
-    mmode(MPROJECTION)
-    p = getmatrix()
-    mmode(MVIEWING)
-    return np.asarray(getmatrix(), np.float64) @ np.asarray(p, np.float64)
+current_mvp = sb.current_mvp
+
 
 
 def draw_spheres():
