@@ -15,6 +15,11 @@ import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
+try:
+    from banks import colour
+except ImportError:
+    from tests.banks import colour
+
 
 @pytest.fixture(autouse=True)
 def _fresh_machine():
@@ -36,16 +41,6 @@ def open_win(w=4, h=4, rgb=True, accum=16, double=False, planes=0):
     gconfig()
     ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
     return gid
-
-
-def box(x1, y1, x2, y2):
-    subpixel(TRUE)
-    rectf(x1 - 0.5, y1 - 0.5, x2 + 0.5, y2 + 0.5)
-
-
-def colour():
-    w, h = getsize()
-    return lrectread(0, 0, w - 1, h - 1).astype(np.int64)
 
 
 def acc_bank():

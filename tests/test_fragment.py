@@ -2,14 +2,17 @@
 
 Expectations are computed here from the man-page formulas.
 """
-import itertools
 
-import numpy as np
 import pytest
 
 import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
+
+try:
+    from banks import box, colour, indices, z_bank, stencil_bank
+except ImportError:
+    from tests.banks import box, colour, indices, z_bank, stencil_bank
 
 
 @pytest.fixture(autouse=True)
@@ -29,36 +32,6 @@ def open_win(w=4, h=4, rgb=True, planes=0):
     gconfig()
     ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
     return gid
-
-
-def box(x1, y1, x2, y2):
-    """Fill exactly pixels x1..x2, y1..y2 (no pixel centre on an edge)."""
-    subpixel(TRUE)
-    rectf(x1 - 0.5, y1 - 0.5, x2 + 0.5, y2 + 0.5)
-
-
-def colour():
-    w, h = getsize()
-    return lrectread(0, 0, w - 1, h - 1).astype(np.int64)
-
-
-def indices():
-    w, h = getsize()
-    return rectread(0, 0, w - 1, h - 1).astype(np.int64)
-
-
-def z_bank():
-    w, h = getsize()
-    readsource(SRC_ZBUFFER)
-    z = lrectread(0, 0, w - 1, h - 1).astype(np.int64)
-    readsource(SRC_AUTO)
-    return z
-
-
-def stencil_bank():
-    from irisgl._current import machine
-    machine.flush()
-    return machine.current.fb.stencil.astype(np.int64).copy()
 
 
 def comps(word):

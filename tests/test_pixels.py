@@ -7,6 +7,11 @@ import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
+try:
+    from banks import box, colour
+except ImportError:
+    from tests.banks import box, colour
+
 
 @pytest.fixture(autouse=True)
 def _fresh_machine():
@@ -27,16 +32,6 @@ def open_win(w=8, h=8, rgb=True, planes=0, double=False):
     gconfig()
     ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
     return gid
-
-
-def box(x1, y1, x2, y2):
-    subpixel(TRUE)
-    rectf(x1 - 0.5, y1 - 0.5, x2 + 0.5, y2 + 0.5)
-
-
-def colour():
-    w, h = getsize()
-    return lrectread(0, 0, w - 1, h - 1).astype(np.int64)
 
 
 def distinct_words(h, w, seed=3):

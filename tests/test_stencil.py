@@ -11,6 +11,11 @@ import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
+try:
+    from banks import box, stencil_bank, z_bank, colour
+except ImportError:
+    from tests.banks import box, stencil_bank, z_bank, colour
+
 
 # -- fixtures and helpers -------------------------------------------------------
 @pytest.fixture(autouse=True)
@@ -34,33 +39,6 @@ def open_win(w=8, h=8, planes=8, rgb=True, origin=None):
     gconfig()
     ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
     return gid
-
-
-def box(x1, y1, x2, y2):
-    """Fill exactly pixels x1..x2, y1..y2: edges on pixel boundaries with
-    sub-pixel vertices, so no pixel centre lies on an edge (independent of
-    the fill rule)."""
-    subpixel(TRUE)
-    rectf(x1 - 0.5, y1 - 0.5, x2 + 0.5, y2 + 0.5)
-
-
-def stencil_bank():
-    """The stencil bank, (h, w) with row 0 at the bottom (inspection only)."""
-    from irisgl._current import machine
-    machine.flush()
-    return machine.current.fb.stencil.astype(np.int64).copy()
-
-
-def z_bank():
-    readsource(SRC_ZBUFFER)
-    z = lrectread(0, 0, getsize()[0] - 1, getsize()[1] - 1).astype(np.int64)
-    readsource(SRC_AUTO)
-    return z
-
-
-def colour():
-    w, h = getsize()
-    return lrectread(0, 0, w - 1, h - 1).astype(np.int64)
 
 
 def set_columns(values, h=None):
