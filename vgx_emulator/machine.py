@@ -14,7 +14,7 @@ Reads (lrectread, PNG output) flush too.
 import numpy as np
 
 from . import config, display, geometry, scan
-from .errors import fail, warn
+from .errors import fail
 from .events import INPUTCHANGE, REDRAW, EventQueue
 from .framebuffer import ZMAX, ZMIN, Framebuffer
 from .geometry import lighting, stack
@@ -23,7 +23,7 @@ from .geometry.batch import CLASS_OF, FILLED, VertexBatch
 from .raster import fragment
 from .raster.variants import RasterKey
 from .scan.spans import fill, fill_pattern, fill_z
-from .scan.triangles import CULL_BACK, CULL_BOTH, CULL_FRONT, CULL_NONE
+from .scan.triangles import CULL_BACK, CULL_FRONT, CULL_NONE
 from .state import WindowState
 
 KIND_NAMES = {POLYGON: "polygon", TMESH: "tmesh", QSTRIP: "qstrip", LINE: "line",
@@ -378,19 +378,19 @@ class VGX:
     def lmbind(self, win, target, index):
         st = win.st
         self.state_change(win)
-        if target in (lighting_MATERIAL, lighting_BACKMATERIAL):
+        if target in (lighting.MATERIAL, lighting.BACKMATERIAL):
             idx = index if index in self.defs[lighting.DEFMATERIAL] else 0
-            if target == lighting_MATERIAL:
+            if target == lighting.MATERIAL:
                 st.material = idx
             else:
                 st.backmaterial = idx
             st.colour_since_bind = False
             st.mat_override = {}       # binding a material discards lmcolor changes
             win.batch.dirty = True
-        elif target == lighting_LMODEL:
+        elif target == lighting.LMODEL:
             st.lmodel = index if index in self.defs[lighting.DEFLMODEL] else 0
         else:
-            slot = target - lighting_LIGHT0
+            slot = target - lighting.LIGHT0
             table = self.defs[lighting.DEFLIGHT]
             if index == 0 or index not in table:
                 st.lights.pop(slot, None)
@@ -528,10 +528,6 @@ class VGX:
         win = win or self.current
         self._flush(win)
         return display.scanout(win.fb.front, win.st.rgb, self.colormap)
-
-
-lighting_MATERIAL, lighting_BACKMATERIAL = 1000, 1001
-lighting_LIGHT0, lighting_LMODEL = 1100, 1200
 
 
 def _intersect(*rects):

@@ -19,7 +19,7 @@ import numpy as np
 
 from ..errors import warn
 from . import assemble, clip, lighting, viewport
-from .assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
+from .assemble import CLOSEDLINE, POLYGON, QSTRIP, TMESH
 from .batch import COLOUR_SINCE_BIND, FILLED, LAST_WAS_NORMAL, LINES
 from .stack import MVIEWING
 

@@ -18,7 +18,7 @@ _NO_TEX = (np.zeros((1, 4), np.uint8), np.array([1, 0, 1, 1], np.int64),
            np.zeros(1, np.int64), np.zeros(7))
 
 
-def texture_inputs(work, texture, env, tparams):
+def texture_inputs(work, texture, tparams):
     """The kernel's texture tuple: texels, level table, per-triangle
     (level << 1 | bilinear), parameters.  Level choice is per triangle from
     the ratio of its texel area to its pixel area (log2 / 2, rounded)."""
@@ -54,7 +54,7 @@ def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None):
         setup = setup_triangles(work.X, work.Y, work.tris, cull,
                                 ip[0], ip[1], ip[2], ip[3])
         if key.texture:
-            tk = texture_inputs(work, tex[0], None, tex[1])
+            tk = texture_inputs(work, tex[0], tex[1])
             tc = work.TC
         else:
             tk, tc = _NO_TEX, _NO_TC

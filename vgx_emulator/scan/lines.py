@@ -18,8 +18,6 @@ the same per-fragment operations as triangles (:mod:`raster.fragment`).
 """
 import math
 
-import numpy as np
-
 from ..jit import njit
 from ..raster import fragment
 from ..raster.variants import KERNEL_SOURCE_HASH
@@ -124,6 +122,3 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
 
     return draw_points
 
-
-def empty_rows(n=0):
-    return np.zeros((n, 7))

@@ -21,7 +21,7 @@ from ..jit import njit, pnjit, prange
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.variants import KERNEL_SOURCE_HASH
-from .fixed import SHIFT, edge_coefficients
+from .fixed import SHIFT, edge_coefficients, owns_edge
 
 CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
 
@@ -164,9 +164,9 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 B2 = edges[i, 2, 1]
                 C2 = edges[i, 2, 2]
                 # unbiased offsets for the weights (the fill bias is 0 or -1)
-                o0 = 0 if ((Y[c] - Y[b]) < 0 or ((Y[c] - Y[b]) == 0 and X[c] > X[b])) else 1
-                o1 = 0 if ((Y[a] - Y[c]) < 0 or ((Y[a] - Y[c]) == 0 and X[a] > X[c])) else 1
-                o2 = 0 if ((Y[b] - Y[a]) < 0 or ((Y[b] - Y[a]) == 0 and X[b] > X[a])) else 1
+                o0 = 0 if owns_edge(X[b], Y[b], X[c], Y[c]) else 1
+                o1 = 0 if owns_edge(X[c], Y[c], X[a], Y[a]) else 1
+                o2 = 0 if owns_edge(X[a], Y[a], X[b], Y[b]) else 1
                 sx = A0 << SHIFT
                 sx1_ = A1 << SHIFT
                 sx2 = A2 << SHIFT
