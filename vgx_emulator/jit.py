@@ -29,6 +29,17 @@ def helper(fn):
     return numba.njit(**opts)(fn)
 
 
+def inline(fn):
+    """A per-fragment helper inlined by numba into its caller's IR
+    (``inline="always"``) before compilation.  The stage flags a kernel
+    passes it are then constants of the kernel, so the disabled stages
+    vanish and the span loop around it can be vectorised; left to LLVM, a
+    helper holding every stage is too big to inline and costs a call per
+    pixel."""
+    opts = dict(_opts, cache=False, inline="always")
+    return numba.njit(**opts)(fn)
+
+
 def pnjit(fn):
     """A kernel whose outer loop is a ``prange`` over framebuffer bands."""
     return numba.njit(parallel=config.PARALLEL, **_opts)(fn)

@@ -238,7 +238,7 @@ class VGX:
                         blend=color and st.rgb and not logic and st.blendfunc != (1, 0),
                         logic=logic, atest=st.rgb and st.afunc[1] != 7,
                         pattern=pat is not None, cmask=color and cmask_val != full,
-                        texture=False)
+                        texture=False, dual=color and len(targets) >= 2)
         zb = fb.ensure_z() if ztest else _DUMMY_Z
         c0 = targets[0] if targets else _DUMMY_C
         c1 = targets[1] if len(targets) > 1 else _DUMMY_C
@@ -252,7 +252,6 @@ class VGX:
         near, far = st.depth_range
         ip[fragment.P_ZLO] = min(near, far)
         ip[fragment.P_ZHI] = max(near, far)
-        ip[fragment.P_NCB] = len(targets)
         smax = (1 << fb.stencil_planes) - 1
         ref, func, mask, sfail, spass, szpass = st.stencil
         ip[fragment.P_SFUNC] = func

@@ -16,22 +16,12 @@ ZF_NEVER, ZF_LESS, ZF_EQUAL, ZF_LEQUAL, ZF_GREATER, ZF_NOTEQUAL, ZF_GEQUAL, ZF_A
 @helper
 def compare(func, a, b):
     """``a FUNC b`` for the 8 IRIS GL comparison functions (ZF_*, SF_*, AF_*
-    share the numbering)."""
-    if func == 3:
-        return a <= b
-    if func == 1:
-        return a < b
-    if func == 7:
-        return True
-    if func == 0:
-        return False
-    if func == 2:
-        return a == b
-    if func == 4:
-        return a > b
-    if func == 5:
-        return a != b
-    return a >= b
+    share the numbering).  The numbering is a bit set: bit 0 passes on
+    ``a < b``, bit 1 on ``a == b``, bit 2 on ``a > b`` (ZF_LEQUAL = 3 =
+    less | equal, ZF_NOTEQUAL = 5 = less | greater, ...), so the test is
+    branch-free and a span loop around it vectorises."""
+    return (((func & 1) != 0) & (a < b)) | (((func & 2) != 0) & (a == b)) | \
+        (((func & 4) != 0) & (a > b))
 
 
 @helper
@@ -49,6 +39,4 @@ def quantize(z, zlo, zhi):
 def masked_write(stored, value, mask):
     """zwritemask: keep stored bits where mask is 0; result sign-extended 24-bit."""
     v = ((stored & ~mask) | (value & mask)) & 0xFFFFFF
-    if v & 0x800000:
-        v -= 0x1000000
-    return v
+    return (v ^ 0x800000) - 0x800000

@@ -16,25 +16,42 @@ Order (reference section 6 "Pipeline order", 7, 8; Decisions 1, 2):
 ``planes`` is the tuple of banks kernels take, in this order:
 (colour target 0, colour target 1, z, stencil, pattern bits).  Absent banks
 are 1x1 dummies that the kernel variant never touches.  ``ip`` is the int64
-parameter vector whose slots are the P_* names below.  Which stages run is
+parameter vector whose slots are the P_* names below; kernels copy it once
+into a tuple of scalars (``params``) so that the per-pixel code reads
+registers, not memory that might alias the banks.  Which stages run is
 decided by the kernel's compile-time flags (raster/variants.py); their
 parameters (functions, references, masks, factors) are runtime values.
+
+``stages`` is the one implementation of the stages: a pure function of the
+incoming and stored values, written as selects rather than early returns.
+Every stage computes its verdict and the stores keep the old value where
+the fragment was rejected: the result is the same as testing stage by
+stage, and a span loop around it compiles to vector code (z, stencil and
+plain colour writes).
 """
 import math
 
 import numpy as np
 
-from ..jit import helper
+from ..jit import helper, inline
 from . import blend as _blend
 from . import depth
 from . import stencil as _stencil
 
 # slots of the integer parameter vector
-(P_SX0, P_SX1, P_SY0, P_SY1, P_ZFUNC, P_ZMASK, P_ZLO, P_ZHI, P_NCB,
+(P_SX0, P_SX1, P_SY0, P_SY1, P_ZFUNC, P_ZMASK, P_ZLO, P_ZHI,
  P_SFUNC, P_SREF, P_SMASK, P_SFAIL, P_SPASS, P_SZPASS, P_SWMASK, P_SMAX,
  P_CMASK, P_BSRC, P_BDST, P_AFUNC, P_AREF, P_LOGICOP,
- P_PATSIZE, P_ORGX, P_ORGY) = range(26)
-NPARAMS = 26
+ P_PATSIZE, P_ORGX, P_ORGY) = range(25)
+NPARAMS = 25
+
+
+@helper
+def params(ip):
+    """The parameter vector as a tuple of scalars (read once per kernel)."""
+    return (ip[0], ip[1], ip[2], ip[3], ip[4], ip[5], ip[6], ip[7], ip[8], ip[9],
+            ip[10], ip[11], ip[12], ip[13], ip[14], ip[15], ip[16], ip[17], ip[18],
+            ip[19], ip[20], ip[21], ip[22], ip[23], ip[24])
 
 
 @helper
@@ -55,70 +72,89 @@ def colour_word(cmode, r, g, b, a):
 
 
 @helper
-def write_colour(cb, y, x, word, blend, logic, cmask, cmode, ip):
-    """Blend or logicop against this buffer's pixel, then the writemask."""
-    old = np.int64(cb[y, x])
+def colour_out(old, word, blend, logic, cmask, cmode, prm):
+    """The value a colour buffer receives: blend or logicop against the
+    stored ``old``, then the writemask."""
+    old = np.int64(old)
     new = np.int64(word)
     if logic:
-        new = _blend.logic_op(ip[P_LOGICOP], word, old)
+        new = _blend.logic_op(prm[P_LOGICOP], new, old)
     elif blend and not cmode:
-        new = _blend.blend_words(ip[P_BSRC], ip[P_BDST], word, old)
+        new = _blend.blend_words(prm[P_BSRC], prm[P_BDST], new, old)
     if cmask:
-        m = ip[P_CMASK]
+        m = prm[P_CMASK]
         new = (old & ~m) | (new & m)
     if cmode:
         new &= 0xFFF
-    cb[y, x] = new
+    return new
+
+
+@inline
+def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
+           patbit, zq, zold, sold, c0, c1, word, prm):
+    """Every enabled stage for one fragment, as a pure function of scalars.
+
+    ``patbit``: the pattern bit under the pixel (1 without a pattern);
+    ``zq``: the quantized window z; ``zold``, ``sold``, ``c0``, ``c1``: the
+    stored z, stencil and colour values; ``word``: the packed incoming colour
+    (0xAABBGGRR, or the index in colour-map mode).  Returns (colour passes,
+    new z, new stencil, new c0, new c1); a stage that rejects leaves the
+    stored values as they were.  The callers do the loads and stores: no
+    array crosses this call, so it inlines into the span loop (an array
+    argument costs reference counting on every call)."""
+    ok = patbit != 0
+    if atest:
+        ok = ok & depth.compare(prm[P_AFUNC], (word >> 24) & 0xFF, prm[P_AREF])
+    zpass = True
+    if ztest:
+        zpass = depth.compare(prm[P_ZFUNC], zq, zold)
+    snew = sold
+    if stencil:
+        m = prm[P_SMASK]
+        spass = depth.compare(prm[P_SFUNC], prm[P_SREF] & m, sold & m)
+        # Decision 1: without a z-buffer a passing fragment takes the pass op
+        op = prm[P_SZPASS] if (ztest and zpass) else prm[P_SPASS]
+        op = op if spass else prm[P_SFAIL]
+        snew = _stencil.apply(op, sold, prm[P_SREF], prm[P_SMAX], prm[P_SWMASK])
+        snew = snew if ok else sold
+        ok = ok & spass
+    ok = ok & zpass
+    znew = zold
+    if zwrite:
+        znew = depth.masked_write(zold, zq, prm[P_ZMASK]) if ok else zold
+    n0 = word
+    n1 = word
+    if blend or logic or cmask:
+        n0 = colour_out(c0, word, blend, logic, cmask, cmode, prm)
+        n1 = colour_out(c1, word, blend, logic, cmask, cmode, prm)
+    return ok, znew, snew, (n0 if ok else c0), (n1 if ok else c1)
 
 
 @helper
 def fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, pattern, cmask,
-             x, y, z, r, g, b, a, planes, ip):
-    """One fragment at window (x, y) through every enabled stage."""
+             dual, x, y, z, r, g, b, a, planes, ip):
+    """One fragment given as floats (window z, colour 0..255) on whole
+    banks: quantize and pack, load, stages, store.  Lines and points use
+    this entry; the triangle walker does the same per span on row views."""
     cb0, cb1, zb, sb, pat = planes
+    prm = params(ip)
+    zq = depth.quantize(z, prm[P_ZLO], prm[P_ZHI]) if ztest else 0
+    word = colour_word(cmode, r, g, b, a)
+    patbit = 1
     if pattern:
-        n = ip[P_PATSIZE]
-        if pat[(y + ip[P_ORGY]) % n, (x + ip[P_ORGX]) % n] == 0:
-            return
-    if atest:
-        ai = int(math.floor(min(max(a, 0.0), 255.0) + 0.5))
-        if not depth.compare(ip[P_AFUNC], ai, ip[P_AREF]):
-            return
+        n = prm[P_PATSIZE]
+        patbit = pat[(y + prm[P_ORGY]) % n, (x + prm[P_ORGX]) % n]
+    zold = np.int64(zb[y, x]) if ztest else 0
+    sold = np.int64(sb[y, x]) if stencil else 0
+    c0 = np.int64(cb0[y, x]) if color else 0
+    c1 = np.int64(cb1[y, x]) if (color and dual) else 0
+    ok, znew, snew, n0, n1 = stages(ztest, zwrite, stencil, blend, logic, atest, cmask,
+                                    cmode, patbit, zq, zold, sold, c0, c1, word, prm)
     if stencil:
-        s = sb[y, x]
-        m = ip[P_SMASK]
-        if not depth.compare(ip[P_SFUNC], ip[P_SREF] & m, s & m):
-            sb[y, x] = _stencil.apply(ip[P_SFAIL], s, ip[P_SREF], ip[P_SMAX], ip[P_SWMASK])
-            return
-        if ztest:
-            zq = depth.quantize(z, ip[P_ZLO], ip[P_ZHI])
-            stored = zb[y, x]
-            if not depth.compare(ip[P_ZFUNC], zq, stored):
-                sb[y, x] = _stencil.apply(ip[P_SPASS], s, ip[P_SREF], ip[P_SMAX],
-                                          ip[P_SWMASK])
-                return
-            sb[y, x] = _stencil.apply(ip[P_SZPASS], s, ip[P_SREF], ip[P_SMAX], ip[P_SWMASK])
-            if zwrite:
-                zb[y, x] = depth.masked_write(stored, zq, ip[P_ZMASK])
-        else:
-            sb[y, x] = _stencil.apply(ip[P_SPASS], s, ip[P_SREF], ip[P_SMAX], ip[P_SWMASK])
-    elif ztest:
-        zq = depth.quantize(z, ip[P_ZLO], ip[P_ZHI])
-        stored = zb[y, x]
-        if not depth.compare(ip[P_ZFUNC], zq, stored):
-            return
-        if zwrite:
-            zb[y, x] = depth.masked_write(stored, zq, ip[P_ZMASK])
+        sb[y, x] = snew
+    if zwrite:
+        zb[y, x] = znew
     if color:
-        word = colour_word(cmode, r, g, b, a)
-        n = ip[P_NCB]
-        if blend or logic or cmask:
-            if n >= 1:
-                write_colour(cb0, y, x, word, blend, logic, cmask, cmode, ip)
-            if n >= 2:
-                write_colour(cb1, y, x, word, blend, logic, cmask, cmode, ip)
-        else:
-            if n >= 1:
-                cb0[y, x] = word
-            if n >= 2:
-                cb1[y, x] = word
+        cb0[y, x] = n0
+        if dual:
+            cb1[y, x] = n1

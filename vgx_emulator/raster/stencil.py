@@ -21,17 +21,13 @@ ST_KEEP, ST_ZERO, ST_REPLACE, ST_INCR, ST_DECR, ST_INVERT = range(6)
 
 @helper
 def apply(op, s, ref, smax, wmask):
+    """``op`` on the stored value ``s`` under the write mask.  Written as
+    selects, not branches, so that span loops vectorise."""
     s = int(s)
-    if op == ST_KEEP:
-        return s
-    if op == ST_INCR:
-        v = s + 1 if s < smax else smax
-    elif op == ST_DECR:
-        v = s - 1 if s > 0 else 0
-    elif op == ST_ZERO:
-        v = 0
-    elif op == ST_REPLACE:
-        v = ref
-    else:
-        v = ~s & smax
+    v = s
+    v = min(s + 1, smax) if op == ST_INCR else v
+    v = max(s - 1, 0) if op == ST_DECR else v
+    v = 0 if op == ST_ZERO else v
+    v = ref if op == ST_REPLACE else v
+    v = (~s & smax) if op == ST_INVERT else v
     return ((s & ~wmask) | (v & wmask)) & smax

@@ -30,5 +30,7 @@ def _source_hash():
 KERNEL_SOURCE_HASH = _source_hash()
 
 #: Fields of the raster key, in kernel-factory argument order.
+#: ``dual``: drawing goes to two colour buffers (frontbuffer and backbuffer
+#: both enabled), so that the common one-buffer loop has no per-pixel test.
 RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside "
-                                    "stencil blend logic atest pattern cmask texture")
+                                    "stencil blend logic atest pattern cmask texture dual")

@@ -40,7 +40,7 @@ def point_kernel(key):
 
 
 def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
-                      stencil, blend, logic, atest, pattern, cmask, texture):
+                      stencil, blend, logic, atest, pattern, cmask, texture, dual):
     src_hash = KERNEL_SOURCE_HASH
 
     @njit
@@ -96,13 +96,13 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     b = FLAT[s, 2]
                     a = FLAT[s, 3]
                 fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic,
-                                  atest, False, cmask, x, y, z, r, g, b, a, planes, ip)
+                                  atest, False, cmask, dual, x, y, z, r, g, b, a, planes, ip)
 
     return draw_lines
 
 
 def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
-                       stencil, blend, logic, atest, pattern, cmask, texture):
+                       stencil, blend, logic, atest, pattern, cmask, texture, dual):
     src_hash = KERNEL_SOURCE_HASH
 
     @njit
@@ -117,7 +117,7 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
             if y < ip[fragment.P_SY0] or y > ip[fragment.P_SY1]:
                 continue
             fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest,
-                              False, cmask, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
+                              False, cmask, dual, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
                               P[i, 6], planes, ip)
 
     return draw_points

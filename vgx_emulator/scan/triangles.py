@@ -5,23 +5,52 @@ culling, CCW ordering, integer edge equations with the fill rule
 (:mod:`scan.fixed`), bounding box clipped to the scissor, 1/area.
 
 ``triangle_kernel(key)`` returns the walker compiled for one raster state
-(:mod:`raster.variants`): it loops over framebuffer bands in parallel; each
+(:mod:`raster.variants`).  It loops over framebuffer bands in parallel; each
 band walks every triangle that overlaps it in submission order, so a pixel
 sees its triangles in the order they were drawn whatever the thread count.
-Per pixel: integer inside test, then z and colour interpolated linearly in
-screen space from the barycentric weights (Decision 4); texture coordinates
-perspective-correct (s/w, t/w and 1/w interpolated, then divided), sampled
-and combined by the texture environment (raster/texture.py); then the
-fragment operations of :mod:`raster`.
+Bands are handed out interleaved (``band_order``) so that both threads get
+work when a scene fills only part of the window.
+
+Per triangle row the walker solves the three integer edge inequalities for
+the exact span of covered pixels (``edge_span``: floor divisions, no
+rounding), so the fill rule is decided per row, not per pixel.  Along the
+span (the span processor):
+
+* z is a fixed-point DDA: the start value is evaluated in float64 from the
+  exact edge values at the first pixel, converted to ``ZFRAC`` fractional
+  bits, and stepped by a per-triangle fixed-point dz/dx; rounding to the
+  stored integer is ``floor(z + 1/2)`` as before (Decision 4).  The error of
+  the DDA is below 2**-19 of a z unit over 4096 pixels.  A pixel's z depends
+  only on its triangle, row and span start, never on the band or thread, so
+  multipass algorithms that redraw the same triangles with ZF_EQUAL get the
+  same z in every pass.
+* Gouraud colours are the same DDA with ``CFRAC`` bits; flat colour is one
+  packed word per triangle (the provoking vertex).
+* textured triangles compute barycentric weights per pixel in float64
+  (texture coordinates perspective-correct: s/w, t/w and 1/w interpolated,
+  then divided), sample and apply the texture environment
+  (raster/texture.py); their z is the same DDA as untextured ones.
+
+Each pixel then goes through :func:`raster.fragment.stages`, a pure
+function written without branches on runtime state; the walker loads and
+stores the row views around it, so the span loop of the common variants
+(z test and write, stencil counting, plain colour writes) compiles to SIMD
+code.
 """
+import math
+
 import numpy as np
 
 from .. import config
-from ..jit import njit, pnjit, prange
+from ..jit import helper, njit, pnjit, prange
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.variants import KERNEL_SOURCE_HASH
 from .fixed import SHIFT, edge_coefficients, owns_edge
+
+#: fractional bits of the z and colour DDAs along a span
+ZFRAC = 30
+CFRAC = 24
 
 CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
 
@@ -115,20 +144,67 @@ def triangle_kernel(key):
     return k
 
 
+@helper
+def edge_span(A, c, xl, xr):
+    """Narrow [xl, xr] to the pixels x with ``A * (x << SHIFT) + c >= 0``
+    (one edge of a row; ``c`` = B * py + C).  Exact integer arithmetic."""
+    if A > 0:
+        xl = max(xl, -(c // (A << SHIFT)))
+    elif A < 0:
+        xr = min(xr, c // ((-A) << SHIFT))
+    elif c < 0:
+        xr = xl - 1
+    return xl, xr
+
+
+@helper
+def to_fixed(v, frac):
+    """float -> int64 with ``frac`` fractional bits (round to nearest); 0 for
+    steps too large to matter (a span of such a triangle is one pixel)."""
+    f = v * float(1 << frac)
+    if not (abs(f) < 4.0e18):
+        return np.int64(0)
+    return np.int64(math.floor(f + 0.5))
+
+
+@helper
+def band_order(i, nbands):
+    """The band the i-th iteration draws: a stride coprime with nbands near
+    nbands / 2, so each thread's contiguous share of iterations is spread
+    over the whole window (load balance), while every band is still drawn
+    exactly once."""
+    stride = nbands // 2 + 1
+    while math.gcd(stride, nbands) != 1:
+        stride += 1
+    return (i * stride) % nbands
+
+
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
-                          stencil, blend, logic, atest, pattern, cmask, texture):
+                          stencil, blend, logic, atest, pattern, cmask, texture, dual):
     src_hash = KERNEL_SOURCE_HASH      # closure constant: keys the disk cache
     band_rows = config.BAND_ROWS
+    zhalf = 1 << (ZFRAC - 1)
+    chalf = 1 << (CFRAC - 1)
+    interp = gouraud and color and not texture
+    cmax = 0xFFF if cmode else 255
 
     @pnjit
     def walk(setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
         edges, verts, box, inv_area, back, valid = setup
         texels, tinfo, tsel, tp = tex
         _ = src_hash
-        sy0 = ip[fragment.P_SY0]
-        sy1 = ip[fragment.P_SY1]
+        prm = fragment.params(ip)
+        cb0, cb1, zb, sb, pat = planes
+        npat = prm[fragment.P_PATSIZE]
+        orgx = prm[fragment.P_ORGX]
+        orgy = prm[fragment.P_ORGY]
+        zlo = prm[fragment.P_ZLO]
+        zhi = prm[fragment.P_ZHI]
+        sy0 = prm[fragment.P_SY0]
+        sy1 = prm[fragment.P_SY1]
         nbands = (sy1 - sy0 + band_rows) // band_rows
-        for band in prange(nbands):
+        for it in prange(nbands):
+            band = band_order(it, nbands)
             ylo = sy0 + band * band_rows
             yhi = min(ylo + band_rows - 1, sy1)
             for i in range(valid.shape[0]):
@@ -138,22 +214,11 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 y1 = min(box[i, 3], yhi)
                 if y0 > y1:
                     continue
-                x0 = box[i, 0]
-                x1 = box[i, 1]
                 a = verts[i, 0]
                 b = verts[i, 1]
                 c = verts[i, 2]
                 ia = inv_area[i]
-                use_back = twoside and back[i]
-                cols = CB if use_back else C
-                # flat colour: the provoking vertex
-                tlevel = tsel[i] >> 1 if texture else 0
-                tbil = (tsel[i] & 1) == 1 if texture else False
-                pv = prov[i]
-                fr = cols[pv, 0]
-                fg = cols[pv, 1]
-                fb = cols[pv, 2]
-                fa = cols[pv, 3]
+                cols = CB if (twoside and back[i]) else C
                 A0 = edges[i, 0, 0]
                 B0 = edges[i, 0, 1]
                 C0 = edges[i, 0, 2]
@@ -167,45 +232,129 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 o0 = 0 if owns_edge(X[b], Y[b], X[c], Y[c]) else 1
                 o1 = 0 if owns_edge(X[c], Y[c], X[a], Y[a]) else 1
                 o2 = 0 if owns_edge(X[a], Y[a], X[b], Y[b]) else 1
-                sx = A0 << SHIFT
-                sx1_ = A1 << SHIFT
-                sx2 = A2 << SHIFT
+                # per-pixel steps of the barycentric weights of b and c
+                step = float(1 << SHIFT) * ia
+                dwb = A1 * step
+                dwc = A2 * step
+                za = Z[a]
+                zba = Z[b] - za
+                zca = Z[c] - za
+                dz = to_fixed(zba * dwb + zca * dwc, ZFRAC)
+                # flat colour: the provoking vertex
+                pv = prov[i]
+                word = fragment.colour_word(cmode, cols[pv, 0], cols[pv, 1],
+                                            cols[pv, 2], cols[pv, 3])
+                dr = dg = db = da = np.int64(0)
+                if interp:
+                    dr = to_fixed((cols[b, 0] - cols[a, 0]) * dwb
+                                  + (cols[c, 0] - cols[a, 0]) * dwc, CFRAC)
+                    dg = to_fixed((cols[b, 1] - cols[a, 1]) * dwb
+                                  + (cols[c, 1] - cols[a, 1]) * dwc, CFRAC)
+                    db = to_fixed((cols[b, 2] - cols[a, 2]) * dwb
+                                  + (cols[c, 2] - cols[a, 2]) * dwc, CFRAC)
+                    da = to_fixed((cols[b, 3] - cols[a, 3]) * dwb
+                                  + (cols[c, 3] - cols[a, 3]) * dwc, CFRAC)
+                tlevel = tsel[i] >> 1 if texture else 0
+                tbil = (tsel[i] & 1) == 1 if texture else False
                 for y in range(y0, y1 + 1):
                     py = y << SHIFT
-                    px = x0 << SHIFT
-                    e0 = A0 * px + B0 * py + C0
-                    e1 = A1 * px + B1 * py + C1
-                    e2 = A2 * px + B2 * py + C2
-                    for x in range(x0, x1 + 1):
-                        if (e0 | e1 | e2) >= 0:
+                    r0 = B0 * py + C0
+                    r1 = B1 * py + C1
+                    r2 = B2 * py + C2
+                    xl, xr = edge_span(A0, r0, box[i, 0], box[i, 1])
+                    xl, xr = edge_span(A1, r1, xl, xr)
+                    xl, xr = edge_span(A2, r2, xl, xr)
+                    if xl > xr:
+                        continue
+                    cr0 = cb0[min(y, cb0.shape[0] - 1)]
+                    cr1 = cb1[min(y, cb1.shape[0] - 1)]
+                    zr = zb[min(y, zb.shape[0] - 1)]
+                    sr = sb[min(y, sb.shape[0] - 1)]
+                    px = xl << SHIFT
+                    # exact edge values at the span's first pixel
+                    e0 = A0 * px + r0
+                    e1 = A1 * px + r1
+                    e2 = A2 * px + r2
+                    wb = (e1 + o1) * ia
+                    wc = (e2 + o2) * ia
+                    z0 = to_fixed(za + zba * wb + zca * wc, ZFRAC)
+                    cr = cg = cbl = ca = np.int64(0)
+                    if interp:
+                        cr = to_fixed(cols[a, 0] + (cols[b, 0] - cols[a, 0]) * wb
+                                      + (cols[c, 0] - cols[a, 0]) * wc, CFRAC)
+                        cg = to_fixed(cols[a, 1] + (cols[b, 1] - cols[a, 1]) * wb
+                                      + (cols[c, 1] - cols[a, 1]) * wc, CFRAC)
+                        cbl = to_fixed(cols[a, 2] + (cols[b, 2] - cols[a, 2]) * wb
+                                       + (cols[c, 2] - cols[a, 2]) * wc, CFRAC)
+                        ca = to_fixed(cols[a, 3] + (cols[b, 3] - cols[a, 3]) * wb
+                                      + (cols[c, 3] - cols[a, 3]) * wc, CFRAC)
+                    # the DDAs start half a unit up so that >> rounds to nearest
+                    zf = z0 + zhalf
+                    cr += chalf
+                    cg += chalf
+                    cbl += chalf
+                    ca += chalf
+                    for x in range(xl, xr + 1):
+                        zq = min(max(zf >> ZFRAC, zlo), zhi)
+                        zf += dz
+                        w = word
+                        if interp:
+                            ri = min(max(cr >> CFRAC, 0), cmax)
+                            cr += dr
+                            if cmode:
+                                w = ri & 0xFFF
+                            else:
+                                gi = min(max(cg >> CFRAC, 0), 255)
+                                bi = min(max(cbl >> CFRAC, 0), 255)
+                                ai = min(max(ca >> CFRAC, 0), 255)
+                                cg += dg
+                                cbl += db
+                                ca += da
+                                w = (ai << 24) | (bi << 16) | (gi << 8) | ri
+                        if texture:
                             w0 = (e0 + o0) * ia
                             w1 = (e1 + o1) * ia
                             w2 = (e2 + o2) * ia
-                            z = w0 * Z[a] + w1 * Z[b] + w2 * Z[c]
+                            e0 += A0 << SHIFT
+                            e1 += A1 << SHIFT
+                            e2 += A2 << SHIFT
                             if gouraud:
                                 r = w0 * cols[a, 0] + w1 * cols[b, 0] + w2 * cols[c, 0]
                                 g = w0 * cols[a, 1] + w1 * cols[b, 1] + w2 * cols[c, 1]
                                 bb = w0 * cols[a, 2] + w1 * cols[b, 2] + w2 * cols[c, 2]
                                 al = w0 * cols[a, 3] + w1 * cols[b, 3] + w2 * cols[c, 3]
                             else:
-                                r = fr
-                                g = fg
-                                bb = fb
-                                al = fa
-                            if texture:
-                                iw = w0 * TC[a, 2] + w1 * TC[b, 2] + w2 * TC[c, 2]
-                                ts = (w0 * TC[a, 0] + w1 * TC[b, 0] + w2 * TC[c, 0]) / iw
-                                tt = (w0 * TC[a, 1] + w1 * TC[b, 1] + w2 * TC[c, 1]) / iw
-                                tr, tg, tb, ta = _tex.sample(texels, tinfo, tlevel, tbil,
-                                                             ts, tt, tp[0] != 0, tp[1] != 0)
-                                r, g, bb, al = _tex.environment(int(tp[2]), r, g, bb, al,
-                                                                tr, tg, tb, ta,
-                                                                tp[3], tp[4], tp[5])
-                            fragment.fragment(ztest, zwrite, color, cmode, stencil,
-                                              blend, logic, atest, pattern, cmask,
-                                              x, y, z, r, g, bb, al, planes, ip)
-                        e0 += sx
-                        e1 += sx1_
-                        e2 += sx2
+                                r = cols[pv, 0]
+                                g = cols[pv, 1]
+                                bb = cols[pv, 2]
+                                al = cols[pv, 3]
+                            iw = w0 * TC[a, 2] + w1 * TC[b, 2] + w2 * TC[c, 2]
+                            ts = (w0 * TC[a, 0] + w1 * TC[b, 0] + w2 * TC[c, 0]) / iw
+                            tt = (w0 * TC[a, 1] + w1 * TC[b, 1] + w2 * TC[c, 1]) / iw
+                            tr, tg, tb, ta = _tex.sample(texels, tinfo, tlevel, tbil,
+                                                         ts, tt, tp[0] != 0, tp[1] != 0)
+                            r, g, bb, al = _tex.environment(int(tp[2]), r, g, bb, al,
+                                                            tr, tg, tb, ta,
+                                                            tp[3], tp[4], tp[5])
+                            w = fragment.colour_word(cmode, r, g, bb, al)
+                        patbit = 1
+                        if pattern:
+                            patbit = pat[(y + orgy) % npat, (x + orgx) % npat]
+                        u = np.uint64(x)      # unsigned index: no wraparound test
+                        zold = np.int64(zr[u]) if ztest else np.int64(0)
+                        sold = np.int64(sr[u]) if stencil else np.int64(0)
+                        c0 = np.int64(cr0[u]) if color else np.int64(0)
+                        c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
+                        ok, zn, sn, n0, n1 = fragment.stages(
+                            ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
+                            patbit, zq, zold, sold, c0, c1, w, prm)
+                        if stencil:
+                            sr[u] = sn
+                        if zwrite:
+                            zr[u] = zn
+                        if color:
+                            cr0[u] = n0
+                            if dual:
+                                cr1[u] = n1
 
     return walk
