@@ -20,7 +20,8 @@ from .framebuffer import ZMAX, ZMIN, Framebuffer
 from .geometry import lighting, stack
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
 from .geometry.batch import CLASS_OF, FILLED, VertexBatch
-from .raster import fragment
+from .raster import blend, fragment
+from .raster import stencil as _stencil
 from .raster.variants import RasterKey
 from .scan.spans import fill, fill_pattern, fill_z
 from .scan.triangles import CULL_BACK, CULL_FRONT, CULL_NONE
@@ -235,7 +236,8 @@ class VGX:
                         gouraud=st.gouraud, cmode=not st.rgb,
                         twoside=bool(work is not None and work.twoside),
                         stencil=stencil,
-                        blend=color and st.rgb and not logic and st.blendfunc != (1, 0),
+                        blend=blend.key_code(*st.blendfunc) if (
+                            color and st.rgb and not logic and st.blendfunc != (1, 0)) else 0,
                         logic=logic, atest=st.rgb and st.afunc[1] != 7,
                         pattern=pat is not None, cmask=color and cmask_val != full,
                         texture=False, dual=color and len(targets) >= 2)
@@ -257,11 +259,13 @@ class VGX:
         ip[fragment.P_SFUNC] = func
         ip[fragment.P_SREF] = min(ref, smax)             # Decision 2: clamped
         ip[fragment.P_SMASK] = mask & smax
-        ip[fragment.P_SFAIL], ip[fragment.P_SPASS], ip[fragment.P_SZPASS] = sfail, spass, szpass
+        ref = min(ref, smax)                             # Decision 2: clamped
+        ip[fragment.P_FX:fragment.P_FA + 1] = _stencil.op_terms(sfail, ref, smax)
+        ip[fragment.P_PX:fragment.P_PA + 1] = _stencil.op_terms(spass, ref, smax)
+        ip[fragment.P_ZX:fragment.P_ZA + 1] = _stencil.op_terms(szpass, ref, smax)
         ip[fragment.P_SWMASK] = st.swritemask & smax
         ip[fragment.P_SMAX] = smax
         ip[fragment.P_CMASK] = cmask_val
-        ip[fragment.P_BSRC], ip[fragment.P_BDST] = st.blendfunc
         ip[fragment.P_AREF], ip[fragment.P_AFUNC] = st.afunc
         ip[fragment.P_LOGICOP] = st.logicop
         ip[fragment.P_PATSIZE] = pat[0] if pat is not None else 1

@@ -189,7 +189,8 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
         eye4, clp, xf = _transform(pos, attrs, batch.xforms)
     with np.errstate(all="ignore"):
         tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
-    col, back = _light(st, defs, eye4, attrs, xf, batch.xforms)
+    with np.errstate(all="ignore"):     # a non-finite normal or matrix: dropped below
+        col, back = _light(st, defs, eye4, attrs, xf, batch.xforms)
     bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
             & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))
     if tc is not None:
@@ -203,7 +204,8 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
         drop = bad[tris].any(axis=1) | bad[prov]
         work.dropped = int(drop.sum())
         tris, prov = tris[~drop], prov[~drop]
-        codes = clip.outcodes(clp, gx, gy)
+        with np.errstate(invalid="ignore"):     # inf - inf of dropped vertices
+            codes = clip.outcodes(clp, gx, gy)
         ca, cb, cc = codes[tris[:, 0]], codes[tris[:, 1]], codes[tris[:, 2]]
         inside = (ca | cb | cc) == 0
         reject = (ca & cb & cc) != 0
@@ -225,11 +227,20 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
         work.prov = np.concatenate(keep_p)[order]
         # only vertices that a kept triangle uses are converted: an original
         # vertex replaced by clipping may lie at w <= 0 or far outside the band
-        used = np.zeros(len(verts), bool)
-        used[work.tris.ravel()] = True
         with np.errstate(all="ignore"):
             xw, yw, zw = viewport.to_window(verts[:, :4], viewport_rect, near_far, snap)
-        ok = used & np.isfinite(xw) & np.isfinite(yw) & np.isfinite(zw)
+        ok = viewport.representable(xw, yw, zw)
+        lost = ~ok[work.tris].all(axis=1)
+        if lost.any():
+            # a kept triangle with a vertex the divide cannot place: the clip
+            # vertex (0, 0, 0, 0) (v4f of zeros, a vertex at the light of a
+            # planar shadow matrix) gives 0/0; drop it rather than draw it
+            # to window (0, 0) or overflow the fixed point
+            work.dropped += int(lost.sum())
+            work.tris, work.prov = work.tris[~lost], work.prov[~lost]
+        used = np.zeros(len(verts), bool)
+        used[work.tris.ravel()] = True
+        ok &= used
         xw, yw, zw = np.where(ok, xw, 0.0), np.where(ok, yw, 0.0), np.where(ok, zw, 0.0)
         work.X = viewport.to_fixed(xw)
         work.Y = viewport.to_fixed(yw)
@@ -263,7 +274,8 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
         work.points = _window_rows(rows, viewport_rect, near_far, snap)
     if work.dropped:
         warn("v*/n3f/c*/t*", f"{work.dropped} primitive(s) with a non-finite vertex, "
-             "normal, colour, texture coordinate or transformed position dropped")
+             "normal, colour, texture coordinate or transformed position (or one the "
+             "perspective divide cannot place) dropped")
     return work
 
 

@@ -90,7 +90,10 @@ def normal_matrix(mv):
     """3x3 matrix that takes object normals (row vectors) to eye space: the
     inverse transpose of ModelView's upper 3x3 (nmode(3G)).  A singular
     matrix (scale(1, 0, 1)) gets its cofactor matrix, which keeps a defined
-    direction instead of NaN.  Returns (matrix, orthonormal?)."""
+    direction instead of NaN; a nearly singular one gets the cofactor matrix
+    times the sign of the determinant, the direction of the inverse
+    transpose, so a mirror stays a mirror (scale(1, 1, -1e-13) lights like
+    scale(1, 1, -1)).  Returns (matrix, orthonormal?)."""
     m = np.asarray(mv, np.float64)[:3, :3]
     cof = np.empty((3, 3))
     for i in range(3):
@@ -103,6 +106,8 @@ def normal_matrix(mv):
     scale = np.abs(m).max() ** 3 if np.isfinite(m).all() else 0.0
     if scale > 0 and abs(det) > 1e-12 * scale:
         nm = cof / det
+    elif det < 0:
+        nm = -cof
     else:
         nm = cof
     ortho = bool(np.allclose(m @ m.T, np.eye(3), atol=1e-6))

@@ -41,9 +41,12 @@ def scaling(x, y, z):
 
 
 def rotation(degrees, axis):
-    """rot(3G)/rotate(3G): right-hand rotation about 'x', 'y' or 'z' (row vectors)."""
+    """rot(3G)/rotate(3G): right-hand rotation about 'x', 'y' or 'z' (row vectors).
+    A non-finite angle gives a NaN matrix, like any non-finite matrix call:
+    the primitives drawn under it are dropped with a warning (porting
+    conventions 5), where math.cos(inf) would raise ValueError."""
     a = math.radians(degrees)
-    c, s = math.cos(a), math.sin(a)
+    c, s = (math.cos(a), math.sin(a)) if math.isfinite(a) else (math.nan, math.nan)
     m = np.eye(4)
     i, j = {"x": (1, 2), "y": (2, 0), "z": (0, 1)}[axis]
     m[i, i] = c

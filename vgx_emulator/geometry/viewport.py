@@ -14,6 +14,7 @@ import numpy as np
 from .. import config
 
 ONE = 1 << config.SUBPIXEL_BITS
+FIXED_LIMIT = 1 << 24          # |fixed-point coordinate| the rasterizer takes
 
 
 def to_window(v, viewport, depth_range, snap):
@@ -34,6 +35,18 @@ def to_fixed(xw):
     """Window coordinate -> fixed point with SUBPIXEL_BITS fractional bits
     (round to nearest).  Callers guarantee |xw| within the guard band."""
     return np.floor(xw * ONE + 0.5).astype(np.int64)
+
+
+def representable(xw, yw, zw):
+    """Window coordinates the rasterizer can take: finite, and |x|, |y|
+    below 2**24 in fixed point (the range scan/fixed.py's edge functions are
+    exact for; the guard band keeps clipped vertices far inside it).  Only a
+    vertex the divide cannot place fails: 0/0 from a clip-space vertex at
+    (0, 0, 0, 0), or a clip cut point that cancellation threw out of that
+    range (edges between vertices of 1e20 and more)."""
+    limit = FIXED_LIMIT / ONE
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(zw) & (np.abs(xw) < limit) & (np.abs(yw) < limit)
 
 
 def guard_factors(viewport):

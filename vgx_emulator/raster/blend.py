@@ -24,46 +24,65 @@ logicop: s = incoming word, d = stored word, bitwise on all 32 bits (RGB
 mode) or on the index (colour-map mode); a logicop other than LO_SRC
 replaces blending ([S], reference 7).
 """
-import math
+from ..jit import helper, inline
 
-from ..jit import helper
+#: Each factor as terms in units of 1/255: (constant, own component of the
+#: source, own component of the destination, source alpha, destination
+#: alpha, min flag).  factor*255 = k0 + k1 Cs + k2 Cd + k3 As + k4 Ad, or
+#: min(As, 255 - Ad) when the min flag is set.
+_SRC_TERMS = {0: (0, 0, 0, 0, 0, 0), 1: (255, 0, 0, 0, 0, 0),
+              2: (0, 0, 1, 0, 0, 0), 3: (255, 0, -1, 0, 0, 0),
+              4: (0, 0, 0, 1, 0, 0), 5: (255, 0, 0, -1, 0, 0),
+              6: (0, 0, 0, 0, 1, 0), 7: (255, 0, 0, 0, -1, 0),
+              8: (0, 0, 0, 0, 0, 1)}
+_DST_TERMS = {**_SRC_TERMS, 2: (0, 1, 0, 0, 0, 0), 3: (255, -1, 0, 0, 0, 0)}
+
+
+def factor_terms(code, is_src):
+    """The terms of blendfunction factor ``code`` as a source (sfactr) or
+    destination (dfactr) factor: BF_DC/BF_MDC as source and BF_SC/BF_MSC as
+    destination share the values 2 and 3 (reference 7)."""
+    return (_SRC_TERMS if is_src else _DST_TERMS)[code]
+
+
+def key_code(sfactr, dfactr):
+    """The RasterKey ``blend`` field of blendfunction(sfactr, dfactr): 0 is
+    off.  Kernels are specialised on the factors, so the factor arithmetic
+    folds to what the pair needs (BF_ONE, BF_ONE is a saturating add)."""
+    return 1 + (sfactr << 4) + dfactr
+
+
+def key_terms(code):
+    """(source terms, destination terms) of a RasterKey ``blend`` field."""
+    if not code:
+        return factor_terms(1, True), factor_terms(0, False)
+    return factor_terms((code - 1) >> 4, True), factor_terms((code - 1) & 15, False)
 
 
 @helper
-def _factor(f, is_src, sc, dc, sa, da):
-    """The factor for one component: sc, dc = this component of source and
-    destination; sa, da = alphas (all 0..1)."""
-    if f == 0:
-        return 0.0
-    if f == 1:
-        return 1.0
-    if f == 2:                 # BF_DC as source, BF_SC as destination
-        return dc if is_src else sc
-    if f == 3:                 # BF_MDC / BF_MSC
-        return 1.0 - dc if is_src else 1.0 - sc
-    if f == 4:
-        return sa
-    if f == 5:
-        return 1.0 - sa
-    if f == 6:
-        return da
-    if f == 7:
-        return 1.0 - da
-    return min(sa, 1.0 - da)    # BF_MIN_SA_MDA
+def _factor(t, cs, cd, sa, da):
+    """factor * 255 for one component from its terms (all 0..255 ints)."""
+    lin = t[0] + t[1] * cs + t[2] * cd + t[3] * sa + t[4] * da
+    return min(sa, 255 - da) if t[5] != 0 else lin
 
 
-@helper
-def blend_words(fs, fd, src, dst):
-    sa = ((src >> 24) & 0xFF) / 255.0
-    da = ((dst >> 24) & 0xFF) / 255.0
+@inline
+def blend_words(ts, td, src, dst):
+    """Blend the packed words ``src`` (incoming) and ``dst`` (stored) with the
+    source and destination factor terms.  Per component, exactly:
+    round(clamp(Cs * S + Cd * D, 0, 1) * 255) with C, S, D in 0..1 is
+    ``min((2 (cs S' + cd D') + 255) // 510, 255)`` in integers (cs, S', ...
+    scaled by 255), so the result does not depend on float rounding, and
+    the loop vectorises."""
+    sa = (src >> 24) & 0xFF
+    da = (dst >> 24) & 0xFF
     out = 0
     for k in range(4):
         sh = 8 * k
-        sc = ((src >> sh) & 0xFF) / 255.0
-        dc = ((dst >> sh) & 0xFF) / 255.0
-        v = sc * _factor(fs, True, sc, dc, sa, da) + dc * _factor(fd, False, sc, dc, sa, da)
-        iv = int(math.floor(min(max(v, 0.0), 1.0) * 255.0 + 0.5))
-        out |= iv << sh
+        cs = (src >> sh) & 0xFF
+        cd = (dst >> sh) & 0xFF
+        num = cs * _factor(ts, cs, cd, sa, da) + cd * _factor(td, cs, cd, sa, da)
+        out |= min((2 * num + 255) // 510, 255) << sh
     return out
 
 

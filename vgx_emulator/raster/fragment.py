@@ -40,10 +40,12 @@ from . import stencil as _stencil
 
 # slots of the integer parameter vector
 (P_SX0, P_SX1, P_SY0, P_SY1, P_ZFUNC, P_ZMASK, P_ZLO, P_ZHI,
- P_SFUNC, P_SREF, P_SMASK, P_SFAIL, P_SPASS, P_SZPASS, P_SWMASK, P_SMAX,
- P_CMASK, P_BSRC, P_BDST, P_AFUNC, P_AREF, P_LOGICOP,
- P_PATSIZE, P_ORGX, P_ORGY) = range(25)
-NPARAMS = 25
+ P_SFUNC, P_SREF, P_SMASK, P_SWMASK, P_SMAX,
+ P_FX, P_FK, P_FA, P_PX, P_PK, P_PA, P_ZX, P_ZK, P_ZA,
+ P_CMASK, P_AFUNC, P_AREF, P_LOGICOP,
+ P_PATSIZE, P_ORGX, P_ORGY) = range(29)
+NPARAMS = 29
+# P_F*, P_P*, P_Z*: the stencil fail, pass and zpass ops as stencil.op_terms
 
 
 @helper
@@ -51,7 +53,8 @@ def params(ip):
     """The parameter vector as a tuple of scalars (read once per kernel)."""
     return (ip[0], ip[1], ip[2], ip[3], ip[4], ip[5], ip[6], ip[7], ip[8], ip[9],
             ip[10], ip[11], ip[12], ip[13], ip[14], ip[15], ip[16], ip[17], ip[18],
-            ip[19], ip[20], ip[21], ip[22], ip[23], ip[24])
+            ip[19], ip[20], ip[21], ip[22], ip[23], ip[24], ip[25], ip[26], ip[27],
+            ip[28])
 
 
 @helper
@@ -71,8 +74,8 @@ def colour_word(cmode, r, g, b, a):
     return pack_rgba(r, g, b, a)
 
 
-@helper
-def colour_out(old, word, blend, logic, cmask, cmode, prm):
+@inline
+def colour_out(old, word, blend, logic, cmask, cmode, bterms, prm):
     """The value a colour buffer receives: blend or logicop against the
     stored ``old``, then the writemask."""
     old = np.int64(old)
@@ -80,7 +83,7 @@ def colour_out(old, word, blend, logic, cmask, cmode, prm):
     if logic:
         new = _blend.logic_op(prm[P_LOGICOP], new, old)
     elif blend and not cmode:
-        new = _blend.blend_words(prm[P_BSRC], prm[P_BDST], new, old)
+        new = _blend.blend_words(bterms[0], bterms[1], new, old)
     if cmask:
         m = prm[P_CMASK]
         new = (old & ~m) | (new & m)
@@ -91,13 +94,14 @@ def colour_out(old, word, blend, logic, cmask, cmode, prm):
 
 @inline
 def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
-           patbit, zq, zold, sold, c0, c1, word, prm):
+           patbit, zq, zold, sold, c0, c1, word, bterms, prm):
     """Every enabled stage for one fragment, as a pure function of scalars.
 
     ``patbit``: the pattern bit under the pixel (1 without a pattern);
     ``zq``: the quantized window z; ``zold``, ``sold``, ``c0``, ``c1``: the
     stored z, stencil and colour values; ``word``: the packed incoming colour
-    (0xAABBGGRR, or the index in colour-map mode).  Returns (colour passes,
+    (0xAABBGGRR, or the index in colour-map mode); ``bterms``: the blend
+    factors' terms (blend.key_terms), constants of the kernel.  Returns (colour passes,
     new z, new stencil, new c0, new c1); a stage that rejects leaves the
     stored values as they were.  The callers do the loads and stores: no
     array crosses this call, so it inlines into the span loop (an array
@@ -113,9 +117,14 @@ def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
         m = prm[P_SMASK]
         spass = depth.compare(prm[P_SFUNC], prm[P_SREF] & m, sold & m)
         # Decision 1: without a z-buffer a passing fragment takes the pass op
-        op = prm[P_SZPASS] if (ztest and zpass) else prm[P_SPASS]
-        op = op if spass else prm[P_SFAIL]
-        snew = _stencil.apply(op, sold, prm[P_SREF], prm[P_SMAX], prm[P_SWMASK])
+        zp = ztest and zpass
+        tx = prm[P_ZX] if zp else prm[P_PX]
+        tk = prm[P_ZK] if zp else prm[P_PK]
+        ta = prm[P_ZA] if zp else prm[P_PA]
+        tx = tx if spass else prm[P_FX]
+        tk = tk if spass else prm[P_FK]
+        ta = ta if spass else prm[P_FA]
+        snew = _stencil.apply(tx, tk, ta, sold, prm[P_SMAX], prm[P_SWMASK])
         snew = snew if ok else sold
         ok = ok & spass
     ok = ok & zpass
@@ -125,14 +134,14 @@ def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
     n0 = word
     n1 = word
     if blend or logic or cmask:
-        n0 = colour_out(c0, word, blend, logic, cmask, cmode, prm)
-        n1 = colour_out(c1, word, blend, logic, cmask, cmode, prm)
+        n0 = colour_out(c0, word, blend, logic, cmask, cmode, bterms, prm)
+        n1 = colour_out(c1, word, blend, logic, cmask, cmode, bterms, prm)
     return ok, znew, snew, (n0 if ok else c0), (n1 if ok else c1)
 
 
 @helper
 def fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, pattern, cmask,
-             dual, x, y, z, r, g, b, a, planes, ip):
+             dual, bterms, x, y, z, r, g, b, a, planes, ip):
     """One fragment given as floats (window z, colour 0..255) on whole
     banks: quantize and pack, load, stages, store.  Lines and points use
     this entry; the triangle walker does the same per span on row views."""
@@ -149,7 +158,8 @@ def fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, pattern,
     c0 = np.int64(cb0[y, x]) if color else 0
     c1 = np.int64(cb1[y, x]) if (color and dual) else 0
     ok, znew, snew, n0, n1 = stages(ztest, zwrite, stencil, blend, logic, atest, cmask,
-                                    cmode, patbit, zq, zold, sold, c0, c1, word, prm)
+                                    cmode, patbit, zq, zold, sold, c0, c1, word, bterms,
+                                    prm)
     if stencil:
         sb[y, x] = snew
     if zwrite:

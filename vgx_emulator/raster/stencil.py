@@ -19,15 +19,19 @@ from ..jit import helper
 ST_KEEP, ST_ZERO, ST_REPLACE, ST_INCR, ST_DECR, ST_INVERT = range(6)
 
 
+def op_terms(op, ref, smax):
+    """ST_* as three integers (x, k, a) with op(s) = clamp(((s ^ x) & k) + a,
+    0, smax): KEEP (0, -1, 0), ZERO (0, 0, 0), REPLACE (0, 0, ref), INCR
+    (0, -1, 1), DECR (0, -1, -1), INVERT (smax, -1, 0).  Computed once per
+    pass, so a fragment applies any op with the same few integer operations
+    (no branch on the op, and the span loop vectorises)."""
+    return {ST_KEEP: (0, -1, 0), ST_ZERO: (0, 0, 0), ST_REPLACE: (0, 0, ref),
+            ST_INCR: (0, -1, 1), ST_DECR: (0, -1, -1), ST_INVERT: (smax, -1, 0)}[op]
+
+
 @helper
-def apply(op, s, ref, smax, wmask):
-    """``op`` on the stored value ``s`` under the write mask.  Written as
-    selects, not branches, so that span loops vectorise."""
-    s = int(s)
-    v = s
-    v = min(s + 1, smax) if op == ST_INCR else v
-    v = max(s - 1, 0) if op == ST_DECR else v
-    v = 0 if op == ST_ZERO else v
-    v = ref if op == ST_REPLACE else v
-    v = (~s & smax) if op == ST_INVERT else v
-    return ((s & ~wmask) | (v & wmask)) & smax
+def apply(x, k, a, s, smax, wmask):
+    """The op given by its terms (op_terms) on the stored value ``s``, written
+    only in the planes of the write mask."""
+    v = min(max(((s ^ x) & k) + a, 0), smax)
+    return (s & ~wmask) | (v & wmask)

@@ -20,6 +20,7 @@ import math
 
 from ..jit import njit
 from ..raster import fragment
+from ..raster.blend import key_terms
 from ..raster.variants import KERNEL_SOURCE_HASH
 
 _kernels = {}
@@ -42,6 +43,7 @@ def point_kernel(key):
 def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                       stencil, blend, logic, atest, pattern, cmask, texture, dual):
     src_hash = KERNEL_SOURCE_HASH
+    bterms = key_terms(blend)
 
     @njit
     def draw_lines(P0, P1, FLAT, closed, planes, ip):
@@ -96,7 +98,7 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     b = FLAT[s, 2]
                     a = FLAT[s, 3]
                 fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic,
-                                  atest, False, cmask, dual, x, y, z, r, g, b, a, planes, ip)
+                                  atest, False, cmask, dual, bterms, x, y, z, r, g, b, a, planes, ip)
 
     return draw_lines
 
@@ -104,6 +106,7 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
 def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                        stencil, blend, logic, atest, pattern, cmask, texture, dual):
     src_hash = KERNEL_SOURCE_HASH
+    bterms = key_terms(blend)
 
     @njit
     def draw_points(P, planes, ip):
@@ -117,7 +120,7 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
             if y < ip[fragment.P_SY0] or y > ip[fragment.P_SY1]:
                 continue
             fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest,
-                              False, cmask, dual, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
+                              False, cmask, dual, bterms, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
                               P[i, 6], planes, ip)
 
     return draw_points

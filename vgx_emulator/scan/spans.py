@@ -54,8 +54,10 @@ def pixel_kernel(key):
 def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                        stencil, blend, logic, atest, pattern, cmask, texture, dual):
     from ..raster import fragment as F
+    from ..raster.blend import key_terms
     from ..raster.variants import KERNEL_SOURCE_HASH
     src_hash = KERNEL_SOURCE_HASH
+    bterms = key_terms(blend)
 
     @njit
     def write_pixels(words, x1, y1, xzoom, yzoom, planes, ip):
@@ -84,6 +86,6 @@ def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     b = float((v >> 16) & 0xFF)
                     a = float((v >> 24) & 0xFF)
                 F.fragment(False, False, color, cmode, False, blend, logic, atest, False,
-                           cmask, dual, x, y, 0.0, r, g, b, a, planes, ip)
+                           cmask, dual, bterms, x, y, 0.0, r, g, b, a, planes, ip)
 
     return write_pixels

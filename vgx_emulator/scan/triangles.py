@@ -45,6 +45,7 @@ from .. import config
 from ..jit import helper, njit, pnjit, prange
 from ..raster import fragment
 from ..raster import texture as _tex
+from ..raster.blend import key_terms
 from ..raster.variants import KERNEL_SOURCE_HASH
 from .fixed import SHIFT, edge_coefficients, owns_edge
 
@@ -182,6 +183,7 @@ def band_order(i, nbands):
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                           stencil, blend, logic, atest, pattern, cmask, texture, dual):
     src_hash = KERNEL_SOURCE_HASH      # closure constant: keys the disk cache
+    bterms = key_terms(blend)          # the blend factors, folded into the kernel
     band_rows = config.BAND_ROWS
     zhalf = 1 << (ZFRAC - 1)
     chalf = 1 << (CFRAC - 1)
@@ -347,7 +349,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
                         ok, zn, sn, n0, n1 = fragment.stages(
                             ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
-                            patbit, zq, zold, sold, c0, c1, w, prm)
+                            patbit, zq, zold, sold, c0, c1, w, bterms, prm)
                         if stencil:
                             sr[u] = sn
                         if zwrite:
