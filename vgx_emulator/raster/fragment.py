@@ -50,11 +50,14 @@ NPARAMS = 29
 
 @helper
 def params(ip):
-    """The parameter vector as a tuple of scalars (read once per kernel)."""
-    return (ip[0], ip[1], ip[2], ip[3], ip[4], ip[5], ip[6], ip[7], ip[8], ip[9],
-            ip[10], ip[11], ip[12], ip[13], ip[14], ip[15], ip[16], ip[17], ip[18],
-            ip[19], ip[20], ip[21], ip[22], ip[23], ip[24], ip[25], ip[26], ip[27],
-            ip[28])
+    """The parameter vector as a tuple of scalars (read once per kernel).
+    The stencil slots (P_SREF .. P_ZA) are int32, so that stencil
+    arithmetic on the 8-bit planes runs in 32-bit vector lanes."""
+    i32 = np.int32
+    return (ip[0], ip[1], ip[2], ip[3], ip[4], ip[5], ip[6], ip[7], ip[8],
+            i32(ip[9]), i32(ip[10]), i32(ip[11]), i32(ip[12]), i32(ip[13]), i32(ip[14]),
+            i32(ip[15]), i32(ip[16]), i32(ip[17]), i32(ip[18]), i32(ip[19]), i32(ip[20]),
+            i32(ip[21]), ip[22], ip[23], ip[24], ip[25], ip[26], ip[27], ip[28])
 
 
 @helper
@@ -154,7 +157,7 @@ def fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, pattern,
         n = prm[P_PATSIZE]
         patbit = pat[(y + prm[P_ORGY]) % n, (x + prm[P_ORGX]) % n]
     zold = np.int64(zb[y, x]) if ztest else 0
-    sold = np.int64(sb[y, x]) if stencil else 0
+    sold = np.int32(sb[y, x]) if stencil else np.int32(0)
     c0 = np.int64(cb0[y, x]) if color else 0
     c1 = np.int64(cb1[y, x]) if (color and dual) else 0
     ok, znew, snew, n0, n1 = stages(ztest, zwrite, stencil, blend, logic, atest, cmask,

@@ -14,6 +14,8 @@ ST_INVERT  ~s within the n planes
 The result is written only in the planes swritemask enables:
 ``s' = (s & ~wm) | (op(s) & wm)``.
 """
+import numpy as np
+
 from ..jit import helper
 
 ST_KEEP, ST_ZERO, ST_REPLACE, ST_INCR, ST_DECR, ST_INVERT = range(6)
@@ -33,5 +35,5 @@ def op_terms(op, ref, smax):
 def apply(x, k, a, s, smax, wmask):
     """The op given by its terms (op_terms) on the stored value ``s``, written
     only in the planes of the write mask."""
-    v = min(max(((s ^ x) & k) + a, 0), smax)
+    v = min(max(((s ^ x) & k) + a, np.int32(0)), smax)
     return (s & ~wmask) | (v & wmask)

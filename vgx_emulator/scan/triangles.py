@@ -344,7 +344,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                             patbit = pat[(y + orgy) % npat, (x + orgx) % npat]
                         u = np.uint64(x)      # unsigned index: no wraparound test
                         zold = np.int64(zr[u]) if ztest else np.int64(0)
-                        sold = np.int64(sr[u]) if stencil else np.int64(0)
+                        sold = np.int32(sr[u]) if stencil else np.int32(0)
                         c0 = np.int64(cr0[u]) if color else np.int64(0)
                         c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
                         ok, zn, sn, n0, n1 = fragment.stages(
