@@ -94,14 +94,22 @@ def normal_matrix(mv):
     times the sign of the determinant, the direction of the inverse
     transpose, so a mirror stays a mirror (scale(1, 1, -1e-13) lights like
     scale(1, 1, -1)).  Returns (matrix, orthonormal?)."""
-    m = np.asarray(mv, np.float64)[:3, :3]
-    cof = np.empty((3, 3))
-    for i in range(3):
-        for j in range(3):
-            rows = [r for r in range(3) if r != i]
-            cols = [c for c in range(3) if c != j]
-            minor = m[np.ix_(rows, cols)]
-            cof[i, j] = (-1) ** (i + j) * (minor[0, 0] * minor[1, 1] - minor[0, 1] * minor[1, 0])
+    m = np.ascontiguousarray(np.asarray(mv, np.float64)[:3, :3])
+    key = m.tobytes()
+    hit = _normal_cache.get(key)
+    if hit is None:
+        if len(_normal_cache) > 256:
+            _normal_cache.clear()
+        hit = _normal_cache[key] = _normal_matrix(m)
+    return hit
+
+
+_normal_cache = {}
+
+
+def _normal_matrix(m):
+    # rows of the cofactor matrix: the cross products of the other two rows
+    cof = np.cross(m[[1, 2, 0]], m[[2, 0, 1]])
     det = float(np.dot(m[0], cof[0]))
     scale = np.abs(m).max() ** 3 if np.isfinite(m).all() else 0.0
     if scale > 0 and abs(det) > 1e-12 * scale:
@@ -111,6 +119,7 @@ def normal_matrix(mv):
     else:
         nm = cof
     ortho = bool(np.allclose(m @ m.T, np.eye(3), atol=1e-6))
+    nm.setflags(write=False)
     return nm, ortho
 
 
