@@ -21,6 +21,11 @@ GUARD_BAND_PIXELS = 8192
 #: the picture does not depend on the number of threads.
 BAND_ROWS = 32
 
+#: Batches whose triangle boxes cover fewer pixels than this run on one
+#: thread (scan.threads_for): below it a parallel region costs more than it
+#: saves, and on a busy machine much more.
+PARALLEL_MIN_PIXELS = 1 << 18
+
 #: numba flags.  fastmath stays off: the NaN/inf guards and exact integer
 #: edge tests must not be compiled away (pitfalls c.3).
 JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,
