@@ -6,6 +6,8 @@ import math
 import numpy as np
 
 from ..jit import njit
+from ..raster.depth import masked_write
+from ..raster.variants import KERNEL_SOURCE_HASH
 
 
 @njit
@@ -13,19 +15,31 @@ def fill(plane, x0, x1, y0, y1, value, mask):
     """plane[y, x] = (old & ~mask) | (value & mask) over the rectangle."""
     keep = ~mask
     for y in range(y0, y1 + 1):
+        row = plane[y]
         for x in range(x0, x1 + 1):
-            plane[y, x] = (plane[y, x] & keep) | (value & mask)
+            u = np.uint64(x)            # unsigned index: the loop vectorises
+            row[u] = (row[u] & keep) | (value & mask)
 
 
-@njit
-def fill_z(plane, x0, x1, y0, y1, value, mask):
-    """z bank fill under zwritemask (24-bit value, sign-extended storage)."""
-    for y in range(y0, y1 + 1):
-        for x in range(x0, x1 + 1):
-            v = ((plane[y, x] & ~mask) | (value & mask)) & 0xFFFFFF
-            if v & 0x800000:
-                v -= 0x1000000
-            plane[y, x] = v
+def _make_fill_z():
+    """fill_z, with KERNEL_SOURCE_HASH as a closure constant so that its disk
+    cache follows the masked_write helper it inlines (jit.helper)."""
+    src_hash = KERNEL_SOURCE_HASH
+
+    @njit
+    def fill_z(plane, x0, x1, y0, y1, value, mask):
+        """z bank fill under zwritemask (24-bit value, sign-extended storage)."""
+        _ = src_hash
+        for y in range(y0, y1 + 1):
+            row = plane[y]
+            for x in range(x0, x1 + 1):
+                u = np.uint64(x)
+                row[u] = masked_write(np.int64(row[u]), value, mask)
+
+    return fill_z
+
+
+fill_z = _make_fill_z()
 
 
 @njit
