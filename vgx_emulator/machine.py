@@ -280,7 +280,7 @@ class VGX:
             fail(call, f"already inside bgn{KIND_NAMES[b.open[0]]}",
                  f"close it with end{KIND_NAMES[b.open[0]]} first")
         klass = CLASS_OF[kind]
-        if len(b) and b.klass != klass:
+        if b.klass != klass and len(b):      # (cheap test first: bgn is per primitive)
             self._flush(win)
         b.klass = klass
         b.open = (kind, call)
@@ -380,9 +380,12 @@ class VGX:
 
     def lmbind(self, win, target, index):
         st = win.st
-        self.state_change(win)
         if target in (lighting.MATERIAL, lighting.BACKMATERIAL):
             idx = index if index in self.defs[lighting.DEFMATERIAL] else 0
+            bound = st.material if target == lighting.MATERIAL else st.backmaterial
+            if idx == bound and not st.colour_since_bind and not st.mat_override:
+                return      # binding the bound material again changes nothing: no flush
+            self.state_change(win)
             if target == lighting.MATERIAL:
                 st.material = idx
             else:
@@ -391,8 +394,10 @@ class VGX:
             st.mat_override = {}       # binding a material discards lmcolor changes
             win.batch.dirty = True
         elif target == lighting.LMODEL:
+            self.state_change(win)
             st.lmodel = index if index in self.defs[lighting.DEFLMODEL] else 0
         else:
+            self.state_change(win)
             slot = target - lighting.LIGHT0
             table = self.defs[lighting.DEFLIGHT]
             if index == 0 or index not in table:
