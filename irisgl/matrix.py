@@ -51,6 +51,7 @@ def mmode(m):
         fail("mmode", f"unknown matrix mode {m}", "MSINGLE, MPROJECTION, MVIEWING, MTEXTURE")
     ms = w.st.matrices
     if (m == S.MSINGLE) != (ms.mode == S.MSINGLE):
+        machine.state_change(w)     # lighting needs MVIEWING: draw what came before
         ms.reset()
     ms.mode = m
     machine.matrices_changed(w)

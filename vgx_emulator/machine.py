@@ -170,11 +170,16 @@ class VGX:
         st = win.st
         vp = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
         if vp is not None:
-            tex = self._texturing(win) if b.klass == FILLED else None
+            # a pass that writes no colour and tests no alpha (a depth-only
+            # or stencil pass) needs neither lighting nor texturing
+            shade = self._colour_needed(win)
+            tex = self._texturing(win) if (b.klass == FILLED and shade) else None
             work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport,
-                                          texturing=tex is not None)
+                                          texturing=tex is not None, shade=shade)
             key, planes, ip = self._raster_setup(win, work, work.klass == FILLED)
             key = key._replace(texture=tex is not None)
+            if key.gouraud and work.klass == FILLED and tex is None and work.constant_colour():
+                key = key._replace(gouraud=False)   # same pixels, no interpolation
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
             scan.scan_batch(work, key, planes, ip, cull, not st.subpixel, tex)
@@ -207,6 +212,14 @@ class VGX:
         p[RT.T_ENV] = mode
         p[RT.T_CR:RT.T_CA + 1] = env.colour
         return tx, p
+
+    def _colour_needed(self, win):
+        """Whether the fragments' colour is used: written to a colour buffer
+        or tested by afunction."""
+        st = win.st
+        full = 0xFFFFFFFF if st.rgb else 0xFFF
+        written = bool(self._targets(win)) and (st.cmask & full) != 0
+        return written or (st.rgb and st.afunc[1] != 7)
 
     def _targets(self, win):
         """The colour banks drawing goes to (frontbuffer/backbuffer(3G))."""
@@ -385,7 +398,8 @@ class VGX:
             bound = st.material if target == lighting.MATERIAL else st.backmaterial
             if idx == bound and not st.colour_since_bind and not st.mat_override:
                 return      # binding the bound material again changes nothing: no flush
-            self.state_change(win)
+            if st.lmodel != 0 and st.lmodel in self.defs[lighting.DEFLMODEL]:
+                self.state_change(win)  # without a light model the material lights nothing
             if target == lighting.MATERIAL:
                 st.material = idx
             else:

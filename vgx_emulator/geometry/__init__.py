@@ -44,6 +44,18 @@ class WindowWork:
     dropped: int = 0
     extra: dict = field(default_factory=dict)
 
+    def constant_colour(self):
+        """True when every vertex a triangle uses has the same front and back
+        colour: Gouraud shading then draws what FLAT draws."""
+        if self.tris is None or len(self.tris) == 0 or self.C is None:
+            return False
+        used = self.C[self.tris.ravel()]
+        same = bool((used == used[0]).all())
+        if same and self.CB is not self.C:
+            back = self.CB[self.tris.ravel()]
+            same = bool((back == back[0]).all())
+        return same
+
 
 def lighting_active(st, defs):
     """Lighting is computed only while MATERIAL != 0 and LMODEL != 0, in
@@ -182,15 +194,18 @@ def _assemble_filled(batch, pos, table):
     return tris[order], prov[order]
 
 
-def process_batch(batch, st, defs, snap, viewport_rect, texturing=False):
-    """Run the geometry pipeline over ``batch``; returns a WindowWork."""
+def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=True):
+    """Run the geometry pipeline over ``batch``; returns a WindowWork.
+    ``shade`` False (the pass uses no colour): vertex colours pass through
+    unlit."""
     pos, attrs = batch.arrays()
     with np.errstate(all="ignore"):     # non-finite input is dropped with a VGXWarning below
         eye4, clp, xf = _transform(pos, attrs, batch.xforms)
     with np.errstate(all="ignore"):
         tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
     with np.errstate(all="ignore"):     # a non-finite normal or matrix: dropped below
-        col, back = _light(st, defs, eye4, attrs, xf, batch.xforms)
+        col, back = _light(st, defs, eye4, attrs, xf, batch.xforms) if shade else \
+            (attrs[:, 3:7].copy(), None)
     bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
             & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))
     if tc is not None:
