@@ -1119,3 +1119,44 @@ def test_non_finite_texture_coordinate_drops_the_primitive(open_window, bad):
         endpolygon()
         img = lrectread(0, 0, 7, 7)
     assert (img == 0).all()
+
+
+def test_texture_coordinates_in_an_object_compile_and_replay(open_window):
+    """t2f inside makeobj is compiled with the geometry (no call-by-call
+    replay) and draws what the immediate calls draw; after callobj the
+    current texture coordinate is the object's last one (as after the
+    calls)."""
+    from vgx_emulator import objects as O
+    open_window(8, 4)
+    tex = unique_texture(8, 4)
+    define(1, tex, POINT)
+    bind()
+    white()
+    quad(8, 4, 0.0, 0.0, 1.0, 1.0)
+    immediate = read(8, 4)
+    makeobj(7)
+    quad(8, 4, 0.0, 0.0, 1.0, 1.0)
+    closeobj()
+    ops = _machine_objects()[7].ops
+    assert [op[0] for op in ops if op[0] == "run"] == ["run"]
+    assert all(op[0] != "call" or op[1].__name__ not in O.TEXCOORD for op in ops)
+    czclear(0, getgdesc(GD_ZMAX))
+    callobj(7)
+    np.testing.assert_array_equal(read(8, 4), immediate)
+    np.testing.assert_array_equal(immediate, tex)
+    # the state after callobj: the last t2f of the object, (0, 1)
+    makeobj(8)
+    subpixel(TRUE)
+    bgnpolygon()
+    for x, y in ((-0.5, -0.5), (7.5, -0.5), (7.5, 3.5), (-0.5, 3.5)):
+        v2f((x, y))
+    endpolygon()
+    closeobj()
+    callobj(8)
+    expect = tex[point_texel(0.0, 1.0, 8, 4)[1], point_texel(0.0, 1.0, 8, 4)[0]]
+    assert (read(8, 4) == expect).all()
+
+
+def _machine_objects():
+    import vgx_emulator
+    return vgx_emulator.machine().objects

@@ -10,7 +10,7 @@ executed (queries and immediate-only calls still execute, see
   ``objdelete``.
 
 When an object is closed its items are compiled once: every maximal run of
-geometry calls (bgn*/end*, v*, n3f, c*, cpack, RGBcolor, color, swaptmesh) of
+geometry calls (bgn*/end*, v*, n3f, t*, c*, cpack, RGBcolor, color, swaptmesh) of
 one primitive class becomes a :class:`GeometryRun` holding its positions,
 attribute states and primitive table as arrays.  ``callobj`` appends a run to
 the window's batch with list/array operations only, so replay costs no
@@ -31,7 +31,8 @@ BGN = {"bgnpolygon": POLYGON, "bgntmesh": TMESH, "bgnqstrip": QSTRIP, "bgnline":
 END = {"end" + k[3:]: v for k, v in BGN.items()}
 VERTEX = {f"v{n}{t}": n for n in (2, 3, 4) for t in "sifd"}
 COLOUR = {"c3f", "c4f", "c3i", "c4i", "c3s", "c4s", "cpack", "RGBcolor", "color"}
-GEOMETRY = set(BGN) | set(END) | set(VERTEX) | COLOUR | {"n3f", "swaptmesh"}
+TEXCOORD = {f"t{n}{t}": n for n in (2, 3, 4) for t in "sifd"}
+GEOMETRY = set(BGN) | set(END) | set(VERTEX) | set(TEXCOORD) | COLOUR | {"n3f", "swaptmesh"}
 MAX_DEPTH = 64      # nesting of callobj during replay
 
 
@@ -49,11 +50,11 @@ class GeometryRun:
         self.klass = klass
         self.pos = pos              # flat Python list of floats (x, y, z, w)*
         self.akey = akey            # (N,) int64: index into states
-        self.states = states        # [(normal|None, colour|None, last|None, coloured)]
+        self.states = states        # [(normal|None, colour|None, last|None, coloured, tc|None)]
         self.table = table          # (P, 4) int64 [kind, start, count, concave]
         self.swaps = swaps          # (S,) int64 vertex indices
         self.rgb = rgb              # True: RGB colour calls; False: color(); None: neither
-        self.final = final          # (normal|None, colour|None, last|None)
+        self.final = final          # (normal|None, colour|None, last|None, tc|None)
         self.nverts = len(akey)
 
 
@@ -82,7 +83,7 @@ def _colour_of(name, args):
 
 def compile_run(calls):
     """Compile geometry calls [(name, args)] of one primitive class."""
-    normal = colour = last = None
+    normal = colour = last = tc = None
     coloured = False
     states, index = [], {}
     pos, akey, prims, swaps = [], [], [], []
@@ -96,7 +97,7 @@ def compile_run(calls):
             if len(v) != n:
                 raise NotCompilable
             v = v + [0.0] * (3 - n) + [1.0] if n < 4 else v
-            key = (normal, colour, last, coloured)
+            key = (normal, colour, last, coloured, tc)
             k = index.get(key)
             if k is None:
                 k = index[key] = len(states)
@@ -110,6 +111,12 @@ def compile_run(calls):
             if len(v) != 3:
                 raise NotCompilable
             normal, last = v, "n"
+        elif name in TEXCOORD:
+            n = TEXCOORD[name]
+            v = tuple(float(x) for x in args[0])
+            if len(v) != n:
+                raise NotCompilable
+            tc = v + (0.0, 1.0)[n - 2:] if n < 4 else v      # t*(3G): r = 0, q = 1
         elif name in COLOUR:
             mode_rgb = name != "color"
             if rgb is not None and rgb != mode_rgb:
@@ -141,7 +148,7 @@ def compile_run(calls):
     swaps = [s for s in swaps if s < len(akey)]
     table = np.array(prims, np.int64).reshape(-1, 4)
     return GeometryRun(klass, pos, np.array(akey, np.int64), states, table,
-                       np.array(swaps, np.int64), rgb, (normal, colour, last))
+                       np.array(swaps, np.int64), rgb, (normal, colour, last, tc))
 
 
 def compile_items(items):
@@ -202,11 +209,11 @@ def replay_run(machine, win, run):
     xf = len(b.xforms) - 1
     base_attr = len(b.attrs) // RECORD
     flat = []
-    for normal, colour, last, coloured in run.states:
+    for normal, colour, last, coloured, tc in run.states:
         lw = st.last_was_normal if last is None else last == "n"
         since = st.colour_since_bind or (coloured and st.material != 0)
         flags = (LAST_WAS_NORMAL if lw else 0) | (COLOUR_SINCE_BIND if since else 0)
-        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf) + st.texcoord
+        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf) + (tc or st.texcoord)
     b.attrs += flat
     v0 = len(b.akey)
     b.pos += run.pos
@@ -220,7 +227,9 @@ def replay_run(machine, win, run):
     b.add_block(table)
     b.start = len(b.akey)
     # the state the calls would have left
-    normal, colour, last = run.final
+    normal, colour, last, tc = run.final
+    if tc is not None:
+        st.texcoord = tc
     if normal is not None:
         st.normal = normal
     if colour is not None:
