@@ -70,18 +70,12 @@ import os
 import sys
 
 
-def _early_threads(argv):
-    """--threads N, read before numba starts (NUMBA_NUM_THREADS)."""
-    for i, a in enumerate(argv):
-        if a == "--threads" and i + 1 < len(argv):
-            return argv[i + 1]
-        if a.startswith("--threads="):
-            return a.split("=", 1)[1]
-    return None
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))   # benchmarks/: threads.py
+from threads import early_threads  # noqa: E402
 
 
 if __name__ == "__main__":
-    _threads = _early_threads(sys.argv[1:])
+    _threads = early_threads(sys.argv[1:])
     if _threads is None and "NUMBA_NUM_THREADS" not in os.environ:
         _threads = "1"
     if _threads not in (None, "0"):

@@ -58,18 +58,12 @@ import sys
 
 
 # -- 0. environment, before numba or Mesa start ----------------------------------------
-def _early_threads(argv):
-    """The --threads value from argv, read before argparse runs."""
-    for i, a in enumerate(argv):
-        if a == "--threads" and i + 1 < len(argv):
-            return argv[i + 1]
-        if a.startswith("--threads="):
-            return a.split("=", 1)[1]
-    return None
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))   # benchmarks/: threads.py
+from threads import early_threads  # noqa: E402
 
 
 if __name__ == "__main__":
-    _threads = _early_threads(sys.argv[1:])
+    _threads = early_threads(sys.argv[1:])
     if _threads:
         os.environ["NUMBA_NUM_THREADS"] = _threads     # numba's prange walker
         os.environ["LP_NUM_THREADS"] = _threads        # llvmpipe's rasterizer threads
