@@ -281,6 +281,8 @@ class VGX:
         ip[fragment.P_CMASK] = cmask_val
         ip[fragment.P_AREF], ip[fragment.P_AFUNC] = st.afunc
         ip[fragment.P_LOGICOP] = st.logicop
+        ip[fragment.P_BS0:fragment.P_BS5 + 1] = blend.factor_terms(st.blendfunc[0], True)
+        ip[fragment.P_BD0:fragment.P_BD5 + 1] = blend.factor_terms(st.blendfunc[1], False)
         ip[fragment.P_PATSIZE] = pat[0] if pat is not None else 1
         ip[fragment.P_ORGX], ip[fragment.P_ORGY] = win.origin
         return key, planes, ip

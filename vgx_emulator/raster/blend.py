@@ -45,16 +45,28 @@ def factor_terms(code, is_src):
     return (_SRC_TERMS if is_src else _DST_TERMS)[code]
 
 
+#: The pairs kernels are compiled for, so that their factor arithmetic folds
+#: to what the pair needs: additive (Heidmann's lit passes), transparency,
+#: premultiplied transparency, and the two modulations.  Any other pair runs
+#: the generic kernel, which reads the terms from the parameter vector: the
+#: number of compiled variants stays small whatever a program (or the test
+#: suite, which tries every pair) uses.
+FOLDED = {(1, 1), (4, 5), (1, 5), (2, 0), (0, 2)}
+GENERIC = -1
+
+
 def key_code(sfactr, dfactr):
-    """The RasterKey ``blend`` field of blendfunction(sfactr, dfactr): 0 is
-    off.  Kernels are specialised on the factors, so the factor arithmetic
-    folds to what the pair needs (BF_ONE, BF_ONE is a saturating add)."""
-    return 1 + (sfactr << 4) + dfactr
+    """The RasterKey ``blend`` field of blendfunction(sfactr, dfactr) when
+    blending is on: a folded pair's code, or GENERIC."""
+    if (sfactr, dfactr) in FOLDED:
+        return 1 + (sfactr << 4) + dfactr
+    return GENERIC
 
 
 def key_terms(code):
-    """(source terms, destination terms) of a RasterKey ``blend`` field."""
-    if not code:
+    """(source terms, destination terms) compiled into a kernel for a
+    RasterKey ``blend`` field (placeholders for off and GENERIC)."""
+    if code <= 0:
         return factor_terms(1, True), factor_terms(0, False)
     return factor_terms((code - 1) >> 4, True), factor_terms((code - 1) & 15, False)
 

@@ -43,9 +43,13 @@ from . import stencil as _stencil
  P_SFUNC, P_SREF, P_SMASK, P_SWMASK, P_SMAX,
  P_FX, P_FK, P_FA, P_PX, P_PK, P_PA, P_ZX, P_ZK, P_ZA,
  P_CMASK, P_AFUNC, P_AREF, P_LOGICOP,
- P_PATSIZE, P_ORGX, P_ORGY) = range(29)
-NPARAMS = 29
+ P_PATSIZE, P_ORGX, P_ORGY,
+ P_BS0, P_BS1, P_BS2, P_BS3, P_BS4, P_BS5,
+ P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5) = range(41)
+NPARAMS = 41
 # P_F*, P_P*, P_Z*: the stencil fail, pass and zpass ops as stencil.op_terms
+# P_BS*, P_BD*: the blend factors as blend.factor_terms (read by the generic
+# blend kernel only)
 
 
 @helper
@@ -57,7 +61,19 @@ def params(ip):
     return (ip[0], ip[1], ip[2], ip[3], ip[4], ip[5], ip[6], ip[7], ip[8],
             i32(ip[9]), i32(ip[10]), i32(ip[11]), i32(ip[12]), i32(ip[13]), i32(ip[14]),
             i32(ip[15]), i32(ip[16]), i32(ip[17]), i32(ip[18]), i32(ip[19]), i32(ip[20]),
-            i32(ip[21]), ip[22], ip[23], ip[24], ip[25], ip[26], ip[27], ip[28])
+            i32(ip[21]), ip[22], ip[23], ip[24], ip[25], ip[26], ip[27], ip[28],
+            ip[29], ip[30], ip[31], ip[32], ip[33], ip[34], ip[35], ip[36], ip[37], ip[38],
+            ip[39], ip[40])
+
+
+@helper
+def blend_terms(blend, folded, prm):
+    """The blend factor terms a kernel uses: its compiled-in ``folded`` ones,
+    or for the generic kernel (blend.GENERIC) the parameter vector's."""
+    if blend < 0:
+        return ((prm[P_BS0], prm[P_BS1], prm[P_BS2], prm[P_BS3], prm[P_BS4], prm[P_BS5]),
+                (prm[P_BD0], prm[P_BD1], prm[P_BD2], prm[P_BD3], prm[P_BD4], prm[P_BD5]))
+    return folded
 
 
 @helper
@@ -104,7 +120,7 @@ def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
     ``zq``: the quantized window z; ``zold``, ``sold``, ``c0``, ``c1``: the
     stored z, stencil and colour values; ``word``: the packed incoming colour
     (0xAABBGGRR, or the index in colour-map mode); ``bterms``: the blend
-    factors' terms (blend.key_terms), constants of the kernel.  Returns (colour passes,
+    factors' terms (blend_terms: constants of a folded kernel).  Returns (colour passes,
     new z, new stencil, new c0, new c1); a stage that rejects leaves the
     stored values as they were.  The callers do the loads and stores: no
     array crosses this call, so it inlines into the span loop (an array

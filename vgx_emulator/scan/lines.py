@@ -49,6 +49,7 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     def draw_lines(P0, P1, FLAT, closed, planes, ip):
         """P0, P1: (S, 7) rows x, y, z, r, g, b, a; FLAT: (S, 4) colours."""
         _ = src_hash
+        bt = fragment.blend_terms(blend, bterms, fragment.params(ip))
         sx0 = ip[fragment.P_SX0]
         sx1 = ip[fragment.P_SX1]
         sy0 = ip[fragment.P_SY0]
@@ -98,7 +99,7 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     b = FLAT[s, 2]
                     a = FLAT[s, 3]
                 fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic,
-                                  atest, False, cmask, dual, bterms, x, y, z, r, g, b, a, planes, ip)
+                                  atest, False, cmask, dual, bt, x, y, z, r, g, b, a, planes, ip)
 
     return draw_lines
 
@@ -112,6 +113,7 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     def draw_points(P, planes, ip):
         """P: (N, 7) rows x, y, z, r, g, b, a."""
         _ = src_hash
+        bt = fragment.blend_terms(blend, bterms, fragment.params(ip))
         for i in range(P.shape[0]):
             x = int(math.floor(P[i, 0] + 0.5))
             y = int(math.floor(P[i, 1] + 0.5))
@@ -120,7 +122,7 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
             if y < ip[fragment.P_SY0] or y > ip[fragment.P_SY1]:
                 continue
             fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest,
-                              False, cmask, dual, bterms, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
+                              False, cmask, dual, bt, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
                               P[i, 6], planes, ip)
 
     return draw_points

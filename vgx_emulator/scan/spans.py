@@ -77,6 +77,7 @@ def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     def write_pixels(words, x1, y1, xzoom, yzoom, planes, ip):
         """words: (h, w) source rows, row 0 at the bottom; lower-left at (x1, y1)."""
         _ = src_hash
+        bt = F.blend_terms(blend, bterms, F.params(ip))
         h, w = words.shape
         xe = x1 + int(math.ceil(w * xzoom)) - 1
         ye = y1 + int(math.ceil(h * yzoom)) - 1
@@ -100,6 +101,6 @@ def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     b = float((v >> 16) & 0xFF)
                     a = float((v >> 24) & 0xFF)
                 F.fragment(False, False, color, cmode, False, blend, logic, atest, False,
-                           cmask, dual, bterms, x, y, 0.0, r, g, b, a, planes, ip)
+                           cmask, dual, bt, x, y, 0.0, r, g, b, a, planes, ip)
 
     return write_pixels

@@ -183,7 +183,7 @@ def band_order(i, nbands):
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                           stencil, blend, logic, atest, pattern, cmask, texture, dual):
     src_hash = KERNEL_SOURCE_HASH      # closure constant: keys the disk cache
-    bterms = key_terms(blend)          # the blend factors, folded into the kernel
+    bterms = key_terms(blend)          # the blend factors of a folded pair
     band_rows = config.BAND_ROWS
     zhalf = 1 << (ZFRAC - 1)
     chalf = 1 << (CFRAC - 1)
@@ -207,6 +207,8 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         nbands = (sy1 - sy0 + band_rows) // band_rows
         for it in prange(nbands):
             band = band_order(it, nbands)
+            # (inside the band loop: a tuple cannot cross into a parallel region)
+            bt = fragment.blend_terms(blend, bterms, fragment.params(ip))
             ylo = sy0 + band * band_rows
             yhi = min(ylo + band_rows - 1, sy1)
             for i in range(valid.shape[0]):
@@ -349,7 +351,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
                         ok, zn, sn, n0, n1 = fragment.stages(
                             ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
-                            patbit, zq, zold, sold, c0, c1, w, bterms, prm)
+                            patbit, zq, zold, sold, c0, c1, w, bt, prm)
                         if stencil:
                             sr[u] = sn
                         if zwrite:
