@@ -4,7 +4,9 @@ Kernels are specialised on which stages a pass *enables*, not on the values
 those stages take (z function, masks, ...: those are runtime integers).  The
 one exception is the pair of blend factors: the per-component factor
 arithmetic is the costliest per-fragment work, and with the factors known
-at compile time it folds to what the pair needs; programs use few pairs.  So
+at compile time it folds to what the pair needs.  That is done for the
+common pairs of blend.FOLDED; every other pair shares one generic kernel
+that reads the factors at run time, so the variants stay few.  So
 a depth-only pass compiles to a loop with no colour work, a scene without a
 z-buffer never touches z memory, and the set of variants stays small (each
 field is a bool; only the combinations a program uses are compiled).
@@ -33,7 +35,7 @@ def _source_hash():
 KERNEL_SOURCE_HASH = _source_hash()
 
 #: Fields of the raster key, in kernel-factory argument order.
-#: ``blend``: 0, or blend.key_code(sfactr, dfactr) (kernels fold the factors).
+#: ``blend``: 0, or blend.key_code(sfactr, dfactr): a folded pair, or GENERIC.
 #: ``dual``: drawing goes to two colour buffers (frontbuffer and backbuffer
 #: both enabled), so that the common one-buffer loop has no per-pixel test.
 RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside "
