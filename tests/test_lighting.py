@@ -965,3 +965,84 @@ def test_lmbind_unknown_target_is_an_error():
     _window()
     with pytest.raises(GLError, match="^lmbind"):
         lmbind(1234, 1)
+
+
+# ----------------------------------------------------------------------------
+# materials change between primitives without a flush (batch.mats)
+
+def _count_batches(monkeypatch):
+    from vgx_emulator import scan
+    calls = []
+    real = scan.scan_batch
+    monkeypatch.setattr(scan, "scan_batch", lambda *a, **k: (calls.append(1), real(*a, **k)))
+    return calls
+
+
+def test_materials_bound_between_polygons_light_each_polygon(monkeypatch):
+    """lmbind(MATERIAL, i) between primitives: each polygon is lit with the
+    material bound when its vertices were sent (shininess 0 and not, alpha,
+    an lmcolor override), and the three polygons are drawn as one batch."""
+    calls = _count_batches(monkeypatch)
+    _window(48, 16)
+    lt = _props(LIGHT_DEFAULTS, over={POSITION: (0.3, 0.4, 1.0, 0.0)})
+    mats = [_props(MAT_DEFAULTS, over=o) for o in (
+        {DIFFUSE: (1, 0, 0), ALPHA: (.25,)},
+        {SPECULAR: (1, 1, 1), SHININESS: (20,), DIFFUSE: (0, .5, 0)},
+        {ALPHA: (.5,), AMBIENT: (0, 0, 1)})]
+    for i, m in enumerate(mats):
+        lmdef(DEFMATERIAL, i + 1, 0, _plist(m, MAT_DEFAULTS))
+    _, lights, lm = _define(mats[0], [lt], model())
+    lmcolor(LMC_DIFFUSE)                        # (before drawing: it flushes)
+    wants = []
+    for i, m in enumerate(mats):
+        lmbind(MATERIAL, i + 1)
+        pts = [(x + 16 * i, y) for x, y in SQUARE]
+        over = m
+        if i == 2:                              # diffuse from the colour call
+            c3f((0.0, 0.0, 1.0))
+            over = {**m, DIFFUSE: (0.0, 0.0, 1.0), ALPHA: (1.0,)}   # c3f: alpha 1
+        _polygon((0, 0, 1), pts=pts)
+        wants.append(_expected((pts[-1][0], pts[-1][1], 0), (0, 0, 1), over, lights, lm))
+    assert len(set(wants)) == 3                 # the test can tell the materials apart
+    lmcolor(LMC_COLOR)                          # (a state change: the batch is drawn)
+    assert len(calls) == 1
+    for i, want in enumerate(wants):
+        _close(_rgba(CX + 16 * i, CY), want)
+
+
+def test_backmaterial_bound_between_polygons():
+    """TWOSIDE: two back-facing polygons with different BACKMATERIALs bound
+    between them, in one batch, each lit with its own back material."""
+    _window(32, 16)
+    lm = _props(MODEL_DEFAULTS, over={TWOSIDE: (1,)})
+    backs = [_props(MAT_DEFAULTS, over={DIFFUSE: (0, 0, .8)}),
+             _props(MAT_DEFAULTS, over={DIFFUSE: (.8, .8, 0)})]
+    _, lights, lm = _define(mat(), [light()], lm)
+    wants = []
+    for i, b in enumerate(backs):
+        lmdef(DEFMATERIAL, i + 2, 0, _plist(b, MAT_DEFAULTS))
+        lmbind(BACKMATERIAL, i + 2)
+        bgnpolygon()
+        for x, y in reversed(SQUARE):           # clockwise: the back is seen
+            n3f((0, 0, -1))
+            v3f((x + 16 * i, y, 0))
+        endpolygon()
+        wants.append(_expected((1, 1, 0), (0, 0, 1), b, lights, lm))
+    assert wants[0] != wants[1]
+    for i, want in enumerate(wants):
+        _close(_rgba(CX + 16 * i, CY), want)
+
+
+def test_material_zero_between_polygons_turns_lighting_off(monkeypatch):
+    """lmbind(MATERIAL, 0) ends lighting: the polygon after it keeps its
+    colour while the one before is lit (a flush separates them)."""
+    calls = _count_batches(monkeypatch)
+    _window(32, 16)
+    m, lights, lm = _define(mat(), [light()], model())
+    _polygon((0, 0, 1))
+    lmbind(MATERIAL, 0)
+    cpack(0xFF0000FF)
+    _polygon((0, 0, 1), pts=[(x + 16, y) for x, y in SQUARE])
+    _close(_rgba(), _expected((LAST[0], LAST[1], 0), (0, 0, 1), m, lights, lm))
+    _close(_rgba(CX + 16, CY), (255, 0, 0, 255))
+    assert len(calls) == 2

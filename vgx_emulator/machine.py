@@ -400,8 +400,13 @@ class VGX:
             bound = st.material if target == lighting.MATERIAL else st.backmaterial
             if idx == bound and not st.colour_since_bind and not st.mat_override:
                 return      # binding the bound material again changes nothing: no flush
-            if st.lmodel != 0 and st.lmodel in self.defs[lighting.DEFLMODEL]:
-                self.state_change(win)  # without a light model the material lights nothing
+            if target == lighting.MATERIAL and (idx == 0) != (bound == 0) and \
+                    st.lmodel != 0 and \
+                    st.lmodel in self.defs[lighting.DEFLMODEL]:
+                # lighting turns on or off: the batch so far is drawn first.
+                # Another material (or none without a light model) needs no
+                # flush: each vertex record carries its material (batch.mats)
+                self.state_change(win)
             if target == lighting.MATERIAL:
                 st.material = idx
             else:

@@ -208,12 +208,14 @@ def replay_run(machine, win, run):
         b.xf_dirty = False
     xf = len(b.xforms) - 1
     base_attr = len(b.attrs) // RECORD
+    mref = b.material_ref(st)
     flat = []
     for normal, colour, last, coloured, tc in run.states:
         lw = st.last_was_normal if last is None else last == "n"
         since = st.colour_since_bind or (coloured and st.material != 0)
         flags = (LAST_WAS_NORMAL if lw else 0) | (COLOUR_SINCE_BIND if since else 0)
-        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf) + (tc or st.texcoord)
+        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf) + (tc or st.texcoord) + \
+            (mref,)
     b.attrs += flat
     v0 = len(b.akey)
     b.pos += run.pos

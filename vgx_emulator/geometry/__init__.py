@@ -77,8 +77,24 @@ def _transform(pos, attrs, xforms):
     return eye, clp, xf
 
 
-def _light(st, defs, eye4, attrs, xf, xforms):
-    """Front and back colours of every vertex (reference 9)."""
+def _materials(st, defs, mats):
+    """Front and back material dicts of each (material, backmaterial,
+    lmcolor overrides) state the batch's vertices refer to."""
+    mdefs = defs[lighting.DEFMATERIAL]
+    front, back = [], []
+    for m, bm, override in mats:
+        mat = mdefs.get(m) or mdefs[st.material]
+        if override:
+            mat = dict(mat)
+            mat.update(override)
+        front.append(mat)
+        back.append(mdefs.get(bm, mat) if bm else mat)
+    return front, back
+
+
+def _light(st, defs, eye4, attrs, xf, xforms, mats):
+    """Front and back colours of every vertex (reference 9).  Each vertex is
+    lit with the material bound when it was sent (attribute column 13)."""
     col = attrs[:, 3:7].copy()
     if not lighting_active(st, defs):
         return col, None
@@ -90,35 +106,33 @@ def _light(st, defs, eye4, attrs, xf, xforms):
         return col, None
     idx = np.nonzero(lit)[0]
     nm = [lighting.normal_matrix(t.modelview) for t in xforms]
-    mats = np.stack([m for m, _ in nm])
+    mats_n = np.stack([m for m, _ in nm])
     ortho = np.array([o for _, o in nm])
     n_obj = attrs[idx, 0:3]
-    n_eye = np.einsum("ni,nij->nj", n_obj, mats[xf[idx]])
+    n_eye = np.einsum("ni,nij->nj", n_obj, mats_n[xf[idx]])
     renorm = (st.nmode == 1) | ~ortho[xf[idx]]
     ln = np.sqrt((n_eye * n_eye).sum(axis=1, keepdims=True))
     safe = np.divide(n_eye, ln, out=np.zeros_like(n_eye), where=ln > 0)
     n_eye = np.where(renorm[:, None], safe, n_eye)
     w = eye4[idx, 3:4]
     eye = np.divide(eye4[idx, :3], w, out=np.zeros((len(idx), 3)), where=w != 0)
-    mdefs = defs[lighting.DEFMATERIAL]
-    mat = mdefs[st.material]
-    if st.mat_override:
-        mat = dict(mat)
-        mat.update(st.mat_override)
+    front, back_mats = _materials(st, defs, mats)
+    mid = attrs[idx, 13].astype(np.int64) if len(front) > 1 else None
     model = defs[lighting.DEFLMODEL][st.lmodel]
     lights = [(defs[lighting.DEFLIGHT].get(b.index, lighting.defaults(lighting.DEFLIGHT)), b)
               for _, b in sorted(st.lights.items())]
     override = (flags[idx] & COLOUR_SINCE_BIND) != 0
     vcol = attrs[idx, 3:7]
     if not st.rgb:
-        col[idx] = lighting.shade_index(eye, n_eye, mat, lights, model)
+        col[idx] = lighting.shade_index(eye, n_eye, front, lights, model, mid)
         return col, None
-    col[idx] = lighting.shade_rgb(eye, n_eye, mat, lights, model, vcol, override, lmcolor)
+    col[idx] = lighting.shade_rgb(eye, n_eye, front, lights, model, vcol, override, lmcolor,
+                                  mid)
     if model[lighting.TWOSIDE][0] == 0.0:
         return col, None
     back = col.copy()
-    bmat = mdefs.get(st.backmaterial, mat) if st.backmaterial else mat
-    back[idx] = lighting.shade_rgb(eye, -n_eye, bmat, lights, model, vcol, override, lmcolor)
+    back[idx] = lighting.shade_rgb(eye, -n_eye, back_mats, lights, model, vcol, override,
+                                   lmcolor, mid)
     return col, back
 
 
@@ -204,7 +218,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     with np.errstate(all="ignore"):
         tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
     with np.errstate(all="ignore"):     # a non-finite normal or matrix: dropped below
-        col, back = _light(st, defs, eye4, attrs, xf, batch.xforms) if shade else \
+        col, back = _light(st, defs, eye4, attrs, xf, batch.xforms, batch.mats) if shade else \
             (attrs[:, 3:7].copy(), None)
     bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
             & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))

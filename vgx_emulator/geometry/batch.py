@@ -16,8 +16,9 @@ CLASS_OF = {POLYGON: FILLED, TMESH: FILLED, QSTRIP: FILLED,
             LINE: LINES, CLOSEDLINE: LINES, POINT: POINTS}
 
 # attribute record flags
-#: floats per attribute record: normal (3), colour (4), flags, transform, s t r q
-RECORD = 13
+#: floats per attribute record: normal (3), colour (4), flags, transform, s t r q,
+#: material (an index into VertexBatch.mats)
+RECORD = 14
 
 LAST_WAS_NORMAL = 1
 COLOUR_SINCE_BIND = 2
@@ -46,6 +47,7 @@ class VertexBatch:
         self.cap = 1 << 62          # vertex count at which the open polygon is full
         self.attrs = []             # flat records: normal, colour, flags, transform, s t r q
         self.xforms = []
+        self.mats = []              # (material, backmaterial, lmcolor overrides) in force
         self.prims = []             # (kind, start, count, concave) of immediate primitives
         self.blocks = []            # earlier primitives as (P, 4) int64 arrays, in order
         self.swaps = []             # vertex indices with a swaptmesh before them
@@ -83,21 +85,32 @@ class VertexBatch:
             self.xf_dirty = False
         flags = (LAST_WAS_NORMAL if st.last_was_normal else 0) | \
                 (COLOUR_SINCE_BIND if st.colour_since_bind else 0)
-        self.attrs += st.normal + st.colour + (flags, len(self.xforms) - 1) + st.texcoord
+        self.attrs += st.normal + st.colour + (flags, len(self.xforms) - 1) + st.texcoord + \
+            (self.material_ref(st),)
         self.cur = len(self.attrs) // RECORD - 1
         self.dirty = False
+
+    def material_ref(self, st):
+        """Index of the bound material state (lmbind MATERIAL/BACKMATERIAL and
+        the lmcolor overrides) in ``mats``: binding another material between
+        primitives needs no flush, the lighting stage reads it per vertex."""
+        m = self.mats[-1] if self.mats else None
+        if m is None or m[0] != st.material or m[1] != st.backmaterial or \
+                m[2] is not st.mat_override:
+            self.mats.append((st.material, st.backmaterial, st.mat_override))
+        return len(self.mats) - 1
 
     def keep_open_primitive(self):
         """After a flush inside bgn/end: keep only the open primitive's vertices."""
         pos = self.pos[4 * self.start:]
         akey = self.akey[self.start:]
         swaps = [s - self.start for s in self.swaps if s >= self.start]
-        attrs, xforms, klass = self.attrs, self.xforms, self.klass
+        attrs, xforms, mats, klass = self.attrs, self.xforms, self.mats, self.klass
         cap = self.cap - self.start
         self.reset()
         self.cap = cap
         self.pos, self.akey, self.swaps = pos, akey, swaps
-        self.attrs, self.xforms, self.klass = attrs, xforms, klass
+        self.attrs, self.xforms, self.mats, self.klass = attrs, xforms, mats, klass
         self.cur = len(attrs) // RECORD - 1
         self.dirty = True
         self.xf_dirty = True

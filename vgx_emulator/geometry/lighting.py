@@ -147,13 +147,26 @@ def _normalize(v):
     return np.divide(v, n, out=np.zeros_like(v), where=n > 0)
 
 
-def _material_arrays(mat, n, vcol, override, lmcolor):
+def _per_vertex(mats, mid, prop, n):
+    """(n, k) values of a material property: one material (mid None) or the
+    material of each vertex (mats[mid[i]])."""
+    if mid is None:
+        return np.broadcast_to(np.asarray(mats[0][prop], np.float64), (n, len(mats[0][prop])))
+    return np.array([m[prop] for m in mats], np.float64)[mid]
+
+
+def _shininess(mats, mid, n):
+    """SHININESS: one scalar for one material, else (n,) per vertex."""
+    if mid is None:
+        return mats[0][SHININESS][0]
+    return _per_vertex(mats, mid, SHININESS, n)[:, 0]
+
+
+def _material_arrays(mats, mid, n, vcol, override, lmcolor):
     """Per-vertex material terms with the lmcolor(3G) redirection applied."""
-    em = np.broadcast_to(np.asarray(mat[EMISSION]), (n, 3)).copy()
-    am = np.broadcast_to(np.asarray(mat[AMBIENT]), (n, 3)).copy()
-    dm = np.broadcast_to(np.asarray(mat[DIFFUSE]), (n, 3)).copy()
-    sm = np.broadcast_to(np.asarray(mat[SPECULAR]), (n, 3)).copy()
-    alpha = np.full(n, mat[ALPHA][0])
+    em, am, dm, sm = (_per_vertex(mats, mid, p, n).copy()
+                      for p in (EMISSION, AMBIENT, DIFFUSE, SPECULAR))
+    alpha = _per_vertex(mats, mid, ALPHA, n)[:, 0].copy()
     if vcol is not None and lmcolor not in (LMC_COLOR, LMC_NULL) and override.any():
         rgb = vcol[override, :3] / 255.0
         target = {LMC_EMISSION: (em,), LMC_AMBIENT: (am,), LMC_DIFFUSE: (dm,),
@@ -165,22 +178,27 @@ def _material_arrays(mat, n, vcol, override, lmcolor):
     return em, am, dm, sm, alpha
 
 
-def shade_rgb(eye, normals, mat, lights, model, vcol=None, override=None,
-              lmcolor=LMC_COLOR):
+def shade_rgb(eye, normals, mats, lights, model, vcol=None, override=None,
+              lmcolor=LMC_COLOR, mid=None):
     """The lighting equation for N vertices; returns (N, 4) colours in 0..255.
 
     eye: (N, 3) eye-space positions; normals: (N, 3) unit eye-space normals;
-    mat: material property dict; lights: [(props, LightBinding)];
+    mats: material property dicts, mid: (N,) index of each vertex's material
+    in mats (None: every vertex has mats[0]); lights: [(props, LightBinding)];
     model: light-model property dict.
     """
+    if isinstance(mats, dict):
+        mats = [mats]
     n = len(eye)
-    em, am, dm, sm, alpha = _material_arrays(mat, n, vcol, override, lmcolor)
+    em, am, dm, sm, alpha = _material_arrays(mats, mid, n, vcol, override, lmcolor)
     col = em + am * np.asarray(model[AMBIENT])
     local_viewer = model[LOCALVIEWER][0] != 0.0
     v = _normalize(-eye) if local_viewer else np.broadcast_to((0.0, 0.0, 1.0), (n, 3))
     k0, k1 = model[ATTENUATION]
     k2 = model[ATTENUATION2][0]
-    sh = mat[SHININESS][0]
+    sh = _shininess(mats, mid, n)
+    shiny = sh != 0.0
+    any_shiny = bool(np.any(shiny))
     for props, bind in lights:
         p = bind.eye_position
         ci = np.asarray(props[LCOLOR])
@@ -202,10 +220,10 @@ def shade_rgb(eye, normals, mat, lights, model, vcol=None, override=None,
         ndotl = (normals * l).sum(axis=1)
         diff = np.maximum(ndotl, 0.0)
         term = am * ali + dm * ci * diff[:, None]
-        if sh != 0.0:
+        if any_shiny:                  # SHININESS 0: no specular term
             h = _normalize(l + v)
             ndoth = np.maximum((normals * h).sum(axis=1), 0.0)
-            spec = np.where(ndotl > 0.0, ndoth ** sh, 0.0)
+            spec = np.where((ndotl > 0.0) & shiny, ndoth ** sh, 0.0)
             term = term + sm * ci * spec[:, None]
         col = col + factor[:, None] * term
     out = np.empty((n, 4))
@@ -214,11 +232,15 @@ def shade_rgb(eye, normals, mat, lights, model, vcol=None, override=None,
     return out
 
 
-def shade_index(eye, normals, mat, lights, model):
-    """Colour-map lighting (reference 9.5): an index per vertex, in column 0."""
+def shade_index(eye, normals, mats, lights, model, mid=None):
+    """Colour-map lighting (reference 9.5): an index per vertex, in column 0.
+    mats and mid as in shade_rgb."""
+    if isinstance(mats, dict):
+        mats = [mats]
     n = len(eye)
-    amb, dif, spe = mat[COLORINDEXES]
-    sh = mat[SHININESS][0]
+    amb, dif, spe = _per_vertex(mats, mid, COLORINDEXES, n).T
+    sh = _shininess(mats, mid, n)
+    shiny = sh != 0.0
     dsum = np.zeros(n)
     ssum = np.zeros(n)
     v = np.broadcast_to((0.0, 0.0, 1.0), (n, 3))
@@ -227,9 +249,10 @@ def shade_index(eye, normals, mat, lights, model):
         l = np.broadcast_to(_normalize(p[None, :3]), (n, 3))
         ndotl = (normals * l).sum(axis=1)
         dsum += np.maximum(ndotl, 0.0)
-        if sh != 0.0:
+        if np.any(shiny):
             h = _normalize(l + v)
-            ssum += np.where(ndotl > 0, np.maximum((normals * h).sum(axis=1), 0.0) ** sh, 0.0)
+            ssum += np.where((ndotl > 0) & shiny,
+                             np.maximum((normals * h).sum(axis=1), 0.0) ** sh, 0.0)
     idx = amb + (dif - amb) * np.minimum(dsum, 1.0) + (spe - dif) * np.minimum(ssum, 1.0)
     out = np.zeros((n, 4))
     out[:, 0] = np.minimum(idx, spe)

@@ -12,7 +12,10 @@ from ..raster.variants import KERNEL_SOURCE_HASH
 
 @njit
 def fill(plane, x0, x1, y0, y1, value, mask):
-    """plane[y, x] = (old & ~mask) | (value & mask) over the rectangle."""
+    """plane[y, x] = (old & ~mask) | (value & mask) over the rectangle.
+    A zero mask writes nothing and touches nothing."""
+    if mask == 0:
+        return
     keep = ~mask
     for y in range(y0, y1 + 1):
         row = plane[y]
@@ -28,8 +31,18 @@ def _make_fill_z():
 
     @njit
     def fill_z(plane, x0, x1, y0, y1, value, mask):
-        """z bank fill under zwritemask (24-bit value, sign-extended storage)."""
+        """z bank fill under zwritemask (24-bit value, sign-extended storage).
+        A zero mask touches nothing; a full one stores without reading."""
         _ = src_hash
+        if mask & 0xFFFFFF == 0:
+            return
+        if mask & 0xFFFFFF == 0xFFFFFF:
+            v = masked_write(np.int64(0), value, mask)
+            for y in range(y0, y1 + 1):
+                row = plane[y]
+                for x in range(x0, x1 + 1):
+                    row[np.uint64(x)] = v
+            return
         for y in range(y0, y1 + 1):
             row = plane[y]
             for x in range(x0, x1 + 1):
