@@ -37,9 +37,11 @@ Workloads:
 
 Equal work: the Mesa side keeps its geometry in display lists built once,
 outside the timing; the emulator side keeps it in IRIS GL objects
-(makeobj/callobj, compiled to arrays at closeobj), except heidmann*, where the
-program's immediate-mode drawing (its numpy silhouette search included) is
-what is timed.  The Mesa timing ends with glFinish(); the emulator timing
+(makeobj/callobj, compiled to arrays at closeobj); heidmann* run the
+program with --objects, which records its DrawObjects and each light's
+DrawShadowVolumes in objects on the first (untimed) frame and replays them
+with callobj (the program's immediate mode costs about 100 ms more a frame
+at 5b, all of it Python calls: 21,100 v3f and 5,325 bgnpolygon).  The Mesa timing ends with glFinish(); the emulator timing
 ends with swapbuffers(), which draws everything queued (machine._flush) before
 the swap.  Each workload: one untimed run per side, then N alternating timed
 runs (emulator, Mesa, emulator, ...).  One PNG per workload per side goes to
@@ -323,7 +325,10 @@ def emu_spheres(w, h, depth_only=False):
 
 
 def heidmann_opts(figure, w, h):
-    return hv.parse(["--figure", figure, "--size", f"{w}x{h}"])
+    """The program's options, with --objects: its scene and shadow volumes
+    recorded in IRIS GL objects on the untimed first frame, as the Mesa side
+    keeps them in display lists."""
+    return hv.parse(["--figure", figure, "--size", f"{w}x{h}", "--objects"])
 
 
 def emu_heidmann(w, h, figure):

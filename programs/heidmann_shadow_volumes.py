@@ -24,7 +24,11 @@ Figures (``--figure``):
 
 Options: ``--zfail`` (depth-fail counting), ``--jitter N``, ``--size WxH``,
 ``--volumes-only I`` (stop after the volume pass of light I: the stencil
-then holds MYZERO + the number of volumes each visible point lies in).
+then holds MYZERO + the number of volumes each visible point lies in),
+``--objects`` (what DrawObjects and DrawShadowVolumes send is recorded once
+in IRIS GL objects, makeobj/closeobj, and replayed with callobj: the same
+calls, as a port tuned for the VGX would keep its static geometry; the
+volumes are recorded per light position.  The images are the same).
 
 From the listing, in its order and with its names: the stencil check and
 ``stensize(getgdesc(GD_BITS_STENCIL))``, gconfig, ``zbuffer(TRUE)``; the
@@ -375,7 +379,30 @@ def define_light(lt):
                                   POSITION, p[0], p[1], p[2], 1.0, LMNULL])
 
 
+use_objects = False     # --objects (set by setup)
+_compiled = {}          # --objects: what a drawing function sent, as an IRIS GL object
+
+
+def _replayed(key, draw, *args):
+    """--objects: callobj of the object holding draw(*args)'s calls, recorded
+    with makeobj/closeobj on first use; without --objects, draw(*args)."""
+    if not use_objects:
+        draw(*args)
+        return
+    obj = _compiled.get(key)
+    if obj is None:
+        obj = _compiled[key] = genobj()
+        makeobj(obj)
+        draw(*args)
+        closeobj()
+    callobj(obj)
+
+
 def DrawObjects(matl):
+    _replayed(("objects", matl), _draw_objects, matl)
+
+
+def _draw_objects(matl):
     for obj in objects:
         lmbind(MATERIAL, obj.matl[matl])
         for n, vs in obj.draw_polys:
@@ -442,6 +469,10 @@ def cap_polygons(lpos):
 
 
 def DrawShadowVolumes(lpos, zfail):
+    _replayed(("volumes", tuple(lpos), zfail), _draw_shadow_volumes, lpos, zfail)
+
+
+def _draw_shadow_volumes(lpos, zfail):
     faces, ingo = shadow_faces(lpos)
     order = np.argsort(~ingo, kind="stable")     # going-into-shadow faces first
     faces, ingo = faces[order], ingo[order]
@@ -571,6 +602,8 @@ def parse(argv):
     ap.add_argument("--size", default=f"{WIDTH}x{HEIGHT}", help="window WxH")
     ap.add_argument("--volumes-only", type=int, default=None, metavar="I",
                     help="stop after the shadow-volume pass of light I")
+    ap.add_argument("--objects", action="store_true",
+                    help="record the scene and the volumes in IRIS GL objects (callobj)")
     a = ap.parse_args(argv)
     a.width, a.height = (int(s) for s in a.size.lower().split("x"))
     if a.jitter is None:
@@ -580,7 +613,9 @@ def parse(argv):
 
 def setup(opts):
     """Scene, lights and eye of a figure (module globals, as in C)."""
-    global objects, light, nLights, eye
+    global objects, light, nLights, eye, use_objects
+    use_objects = opts.objects
+    _compiled.clear()
     scene, names, view = FIGURE_SETUP[opts.figure]
     objects = make_scene(scene)
     light = [Light(i + 1, *LIGHT_DEFS[nm]) for i, nm in enumerate(names)]

@@ -308,11 +308,11 @@ class VGX:
             inside = f"inside bgn{KIND_NAMES[b.open[0]]}" if b.open else "not inside any bgn call"
             fail(call, f"{inside}", f"end{KIND_NAMES[kind]} closes bgn{KIND_NAMES[kind]}")
         n = len(b.akey) - b.start
-        while kind == TMESH and b.swaps and b.swaps[-1] >= len(b.akey):
+        while kind == TMESH and b.swaps and b.swaps[-1] >= b.nverts:
             b.swaps.pop()                 # a swap after the last vertex swaps nothing
         concave = kind == POLYGON and win.st.concave
         if n:
-            b.prims.append((kind, b.start, n, concave))
+            b.prims.append((kind, b.vbase + b.start, n, concave))
         b.open = None
         b.start = len(b.akey)
 
@@ -332,7 +332,7 @@ class VGX:
         b = win.batch
         if b.open is None or b.open[0] != TMESH:
             fail("swaptmesh", "not inside bgntmesh", "call it between bgntmesh and endtmesh")
-        b.swaps.append(len(b.akey))
+        b.swaps.append(b.nverts)
 
     def polyline_vertices(self, win, kind, pts, call):
         """A whole primitive from a point list (rect, poly, polf, ...)."""

@@ -41,14 +41,15 @@ class NotCompilable(Exception):
 
 
 class GeometryRun:
-    """Compiled geometry of one primitive class."""
+    """Compiled geometry of one primitive class, as arrays: replay builds its
+    attribute records with a few whole-array operations."""
 
     __slots__ = ("klass", "pos", "akey", "states", "table", "swaps", "rgb", "final",
-                 "nverts")
+                 "nverts", "tmpl", "no_normal", "no_colour", "no_tc", "last", "coloured")
 
     def __init__(self, klass, pos, akey, states, table, swaps, rgb, final):
         self.klass = klass
-        self.pos = pos              # flat Python list of floats (x, y, z, w)*
+        self.pos = np.array(pos, np.float64).reshape(-1, 4)    # (N, 4) x y z w
         self.akey = akey            # (N,) int64: index into states
         self.states = states        # [(normal|None, colour|None, last|None, coloured, tc|None)]
         self.table = table          # (P, 4) int64 [kind, start, count, concave]
@@ -56,6 +57,20 @@ class GeometryRun:
         self.rgb = rgb              # True: RGB colour calls; False: color(); None: neither
         self.final = final          # (normal|None, colour|None, last|None, tc|None)
         self.nverts = len(akey)
+        # records with the values the run sets; what it leaves unset (None)
+        # comes from the window state at callobj time
+        tmpl = np.zeros((len(states), RECORD))
+        for i, (normal, colour, _, _, tc) in enumerate(states):
+            tmpl[i, 0:3] = normal or 0.0
+            tmpl[i, 3:7] = colour or 0.0
+            tmpl[i, 9:13] = tc or 0.0
+        self.tmpl = tmpl
+        self.no_normal = np.array([st[0] is None for st in states], bool)
+        self.no_colour = np.array([st[1] is None for st in states], bool)
+        self.no_tc = np.array([st[4] is None for st in states], bool)
+        self.last = np.array([-1 if st[2] is None else int(st[2] == "n") for st in states],
+                             np.int64)
+        self.coloured = np.array([st[3] for st in states], bool)
 
 
 def _colour_of(name, args):
@@ -194,11 +209,16 @@ def compile_items(items):
 
 
 def replay_run(machine, win, run):
-    """Append a compiled run to the window's batch (no per-vertex Python)."""
+    """Append a compiled run to the window's batch as array blocks (no Python
+    work per vertex or per attribute state).  Returns False when the calls
+    must be replayed one by one instead (colour mode mismatch, or inside
+    bgn/end)."""
     st = win.st
     if run.rgb is not None and run.rgb != st.rgb:
         return False                      # wrong mode: replay the calls instead
     b = win.batch
+    if b.open is not None:
+        return False
     if len(b) and b.klass != run.klass:
         machine._flush(win)
     b.klass = run.klass
@@ -206,20 +226,17 @@ def replay_run(machine, win, run):
         mv, pr = st.matrices.vertex_matrices()
         b.xforms.append(Transform(mv, pr))
         b.xf_dirty = False
-    xf = len(b.xforms) - 1
-    base_attr = len(b.attrs) // RECORD
-    mref = b.material_ref(st)
-    flat = []
-    for normal, colour, last, coloured, tc in run.states:
-        lw = st.last_was_normal if last is None else last == "n"
-        since = st.colour_since_bind or (coloured and st.material != 0)
-        flags = (LAST_WAS_NORMAL if lw else 0) | (COLOUR_SINCE_BIND if since else 0)
-        flat += (normal or st.normal) + (colour or st.colour) + (flags, xf) + (tc or st.texcoord) + \
-            (mref,)
-    b.attrs += flat
-    v0 = len(b.akey)
-    b.pos += run.pos
-    b.akey += (run.akey + base_attr).tolist()
+    rec = run.tmpl.copy()
+    rec[run.no_normal, 0:3] = st.normal
+    rec[run.no_colour, 3:7] = st.colour
+    rec[run.no_tc, 9:13] = st.texcoord
+    lw = np.where(run.last < 0, st.last_was_normal, run.last == 1)
+    since = st.colour_since_bind | (run.coloured & (st.material != 0))
+    rec[:, 7] = np.where(lw, LAST_WAS_NORMAL, 0) | np.where(since, COLOUR_SINCE_BIND, 0)
+    rec[:, 8] = len(b.xforms) - 1
+    rec[:, 13] = b.material_ref(st)
+    v0 = b.nverts
+    b.add_vertices(run.pos, run.akey + b.add_records(rec))
     if len(run.swaps):
         b.swaps += (run.swaps + v0).tolist()
     table = run.table.copy()
@@ -227,7 +244,6 @@ def replay_run(machine, win, run):
     if st.concave:
         table[:, 3] = table[:, 0] == POLYGON
     b.add_block(table)
-    b.start = len(b.akey)
     # the state the calls would have left
     normal, colour, last, tc = run.final
     if tc is not None:

@@ -106,33 +106,35 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
         return col, None
     idx = np.nonzero(lit)[0]
     nm = [lighting.normal_matrix(t.modelview) for t in xforms]
-    mats_n = np.stack([m for m, _ in nm])
-    ortho = np.array([o for _, o in nm])
-    n_obj = attrs[idx, 0:3]
-    n_eye = np.einsum("ni,nij->nj", n_obj, mats_n[xf[idx]])
-    renorm = (st.nmode == 1) | ~ortho[xf[idx]]
-    ln = np.sqrt((n_eye * n_eye).sum(axis=1, keepdims=True))
-    safe = np.divide(n_eye, ln, out=np.zeros_like(n_eye), where=ln > 0)
-    n_eye = np.where(renorm[:, None], safe, n_eye)
-    w = eye4[idx, 3:4]
-    eye = np.divide(eye4[idx, :3], w, out=np.zeros((len(idx), 3)), where=w != 0)
     front, back_mats = _materials(st, defs, mats)
-    mid = attrs[idx, 13].astype(np.int64) if len(front) > 1 else None
+    mid = attrs[idx, 13].astype(np.int64) if len(front) > 1 else np.zeros(len(idx), np.int64)
     model = defs[lighting.DEFLMODEL][st.lmodel]
     lights = [(defs[lighting.DEFLIGHT].get(b.index, lighting.defaults(lighting.DEFLIGHT)), b)
               for _, b in sorted(st.lights.items())]
     override = (flags[idx] & COLOUR_SINCE_BIND) != 0
     vcol = attrs[idx, 3:7]
     if not st.rgb:
-        col[idx] = lighting.shade_index(eye, n_eye, front, lights, model, mid)
+        mats_n = np.stack([m for m, _ in nm])
+        ortho = np.array([o for _, o in nm])
+        n_eye = np.einsum("ni,nij->nj", attrs[idx, 0:3], mats_n[xf[idx]])
+        renorm = (st.nmode == 1) | ~ortho[xf[idx]]
+        ln = np.sqrt((n_eye * n_eye).sum(axis=1, keepdims=True))
+        safe = np.divide(n_eye, ln, out=np.zeros_like(n_eye), where=ln > 0)
+        n_eye = np.where(renorm[:, None], safe, n_eye)
+        w = eye4[idx, 3:4]
+        eye = np.divide(eye4[idx, :3], w, out=np.zeros((len(idx), 3)), where=w != 0)
+        col[idx] = lighting.shade_index(eye, n_eye, front, lights, model,
+                                        mid if len(front) > 1 else None)
         return col, None
-    col[idx] = lighting.shade_rgb(eye, n_eye, front, lights, model, vcol, override, lmcolor,
-                                  mid)
+    geom = (np.ascontiguousarray(eye4[idx]), np.ascontiguousarray(attrs[idx, 0:3]), xf[idx],
+            np.ascontiguousarray(np.stack([m for m, _ in nm])),
+            np.array([st.nmode == 1 or not o for _, o in nm]), mid)
+    col[idx] = lighting.shade_rgb(geom, front, lights, model, vcol, override, lmcolor)
     if model[lighting.TWOSIDE][0] == 0.0:
         return col, None
     back = col.copy()
-    back[idx] = lighting.shade_rgb(eye, -n_eye, back_mats, lights, model, vcol, override,
-                                   lmcolor, mid)
+    back[idx] = lighting.shade_rgb(geom, back_mats, lights, model, vcol, override, lmcolor,
+                                   sign=-1.0)
     return col, back
 
 

@@ -3,7 +3,10 @@
 ``v*`` calls append a position and a key into a small table of attribute
 records (normal, colour, flags, transform); a new record is made only when a
 normal, colour or matrix call changed something since the last vertex, so a
-vertex costs two list appends.  Primitives are (kind, start, count, seq,
+vertex costs two list appends.  Display-list replay appends whole numpy
+blocks of vertices and records instead (``add_vertices``/``add_records``);
+the immediate lists hold what came after the last block, and indices
+(``akey`` values, primitive starts, swaps) are global over blocks + lists.  Primitives are (kind, start, count, seq,
 flags) records.  A batch holds one class of primitive (filled, line or point)
 so that drawing order between classes is kept by flushing on a change.
 """
@@ -42,23 +45,56 @@ class VertexBatch:
         self.reset()
 
     def reset(self):
-        self.pos = []               # flat x, y, z, w floats
-        self.akey = []              # per vertex: index into attrs
-        self.cap = 1 << 62          # vertex count at which the open polygon is full
-        self.attrs = []             # flat records: normal, colour, flags, transform, s t r q
+        self.pos = []               # flat x, y, z, w floats after the last vertex block
+        self.akey = []              # per vertex: global index of its attribute record
+        self.vblocks = []           # earlier vertices: [(pos (n, 4), akey (n,))]
+        self.vbase = 0              # vertices in vblocks
+        self.cap = 1 << 62          # len(akey) at which the open polygon is full
+        self.attrs = []             # flat records after the last record block
+        self.ablocks = []           # earlier records: [(m, RECORD) float64]
+        self.abase = 0              # records in ablocks
         self.xforms = []
         self.mats = []              # (material, backmaterial, lmcolor overrides) in force
         self.prims = []             # (kind, start, count, concave) of immediate primitives
         self.blocks = []            # earlier primitives as (P, 4) int64 arrays, in order
-        self.swaps = []             # vertex indices with a swaptmesh before them
+        self.swaps = []             # global vertex indices with a swaptmesh before them
         self.klass = None
-        self.start = 0
+        self.start = 0              # len(akey) where the open primitive starts
         self.cur = -1
         self.dirty = True           # attributes changed since the last record
         self.xf_dirty = True        # matrices changed since the last Transform
 
     def __len__(self):
         return len(self.prims) + sum(len(b) for b in self.blocks)
+
+    @property
+    def nverts(self):
+        """Vertices so far: the global index of the next one."""
+        return self.vbase + len(self.akey)
+
+    def add_vertices(self, pos, akey):
+        """Append (n, 4) positions whose records are akey (global indices)
+        as one block, after the immediate vertices (no primitive is open)."""
+        if self.akey:
+            self.vblocks.append((np.array(self.pos, np.float64).reshape(-1, 4),
+                                 np.array(self.akey, np.int64)))
+            self.vbase += len(self.akey)
+            self.pos, self.akey = [], []
+        self.vblocks.append((pos, akey))
+        self.vbase += len(akey)
+        self.start = 0
+
+    def add_records(self, recs):
+        """Append (m, RECORD) attribute records; returns the global index of the first."""
+        if self.attrs:
+            a = np.array(self.attrs, np.float64).reshape(-1, RECORD)
+            self.ablocks.append(a)
+            self.abase += len(a)
+            self.attrs = []
+        self.ablocks.append(recs)
+        self.abase += len(recs)
+        self.dirty = True
+        return self.abase - len(recs)
 
     def add_block(self, table):
         """Append primitives (P, 4) [kind, start, count, concave] as one block
@@ -87,7 +123,7 @@ class VertexBatch:
                 (COLOUR_SINCE_BIND if st.colour_since_bind else 0)
         self.attrs += st.normal + st.colour + (flags, len(self.xforms) - 1) + st.texcoord + \
             (self.material_ref(st),)
-        self.cur = len(self.attrs) // RECORD - 1
+        self.cur = self.abase + len(self.attrs) // RECORD - 1
         self.dirty = False
 
     def material_ref(self, st):
@@ -101,22 +137,35 @@ class VertexBatch:
         return len(self.mats) - 1
 
     def keep_open_primitive(self):
-        """After a flush inside bgn/end: keep only the open primitive's vertices."""
+        """After a flush inside bgn/end: keep only the open primitive's vertices
+        (and every record: they are few, and the primitive's keys point into them)."""
+        first = self.vbase + self.start
         pos = self.pos[4 * self.start:]
         akey = self.akey[self.start:]
-        swaps = [s - self.start for s in self.swaps if s >= self.start]
-        attrs, xforms, mats, klass = self.attrs, self.xforms, self.mats, self.klass
+        swaps = [s - first for s in self.swaps if s >= first]
+        keep = (self.attrs, self.ablocks, self.abase, self.xforms, self.mats, self.klass)
         cap = self.cap - self.start
         self.reset()
         self.cap = cap
         self.pos, self.akey, self.swaps = pos, akey, swaps
-        self.attrs, self.xforms, self.mats, self.klass = attrs, xforms, mats, klass
-        self.cur = len(attrs) // RECORD - 1
+        self.attrs, self.ablocks, self.abase, self.xforms, self.mats, self.klass = keep
+        self.cur = self.abase + len(self.attrs) // RECORD - 1
         self.dirty = True
         self.xf_dirty = True
 
     def arrays(self):
         """(positions (N, 4), attributes (N, RECORD)) as float64 arrays."""
-        pos = np.array(self.pos, np.float64).reshape(-1, 4)
-        attrs = np.array(self.attrs, np.float64).reshape(-1, RECORD)
-        return pos, attrs[np.asarray(self.akey, np.int64)]
+        pos = [p for p, _ in self.vblocks]
+        keys = [k for _, k in self.vblocks]
+        if self.akey:
+            pos.append(np.array(self.pos, np.float64).reshape(-1, 4))
+            keys.append(np.array(self.akey, np.int64))
+        recs = list(self.ablocks)
+        if self.attrs:
+            recs.append(np.array(self.attrs, np.float64).reshape(-1, RECORD))
+        if not pos:
+            return np.zeros((0, 4)), np.zeros((0, RECORD))
+        pos = pos[0] if len(pos) == 1 else np.concatenate(pos)
+        keys = keys[0] if len(keys) == 1 else np.concatenate(keys)
+        recs = recs[0] if len(recs) == 1 else np.concatenate(recs)
+        return pos, recs[keys]

@@ -22,6 +22,7 @@ with D, S the summed diffuse and specular intensities, clamped to spec.
 import numpy as np
 
 from ..errors import fail
+from . import shade
 
 DEFMATERIAL, DEFLIGHT, DEFLMODEL = 0, 100, 200
 EMISSION, AMBIENT, DIFFUSE, SPECULAR, SHININESS, COLORINDEXES, ALPHA = 1, 2, 3, 4, 5, 6, 7
@@ -162,73 +163,28 @@ def _shininess(mats, mid, n):
     return _per_vertex(mats, mid, SHININESS, n)[:, 0]
 
 
-def _material_arrays(mats, mid, n, vcol, override, lmcolor):
-    """Per-vertex material terms with the lmcolor(3G) redirection applied."""
-    em, am, dm, sm = (_per_vertex(mats, mid, p, n).copy()
-                      for p in (EMISSION, AMBIENT, DIFFUSE, SPECULAR))
-    alpha = _per_vertex(mats, mid, ALPHA, n)[:, 0].copy()
-    if vcol is not None and lmcolor not in (LMC_COLOR, LMC_NULL) and override.any():
-        rgb = vcol[override, :3] / 255.0
-        target = {LMC_EMISSION: (em,), LMC_AMBIENT: (am,), LMC_DIFFUSE: (dm,),
-                  LMC_SPECULAR: (sm,), LMC_AD: (am, dm)}[lmcolor]
-        for t in target:
-            t[override] = rgb
-        if lmcolor in (LMC_DIFFUSE, LMC_AD):
-            alpha[override] = vcol[override, 3] / 255.0
-    return em, am, dm, sm, alpha
+_REDIRECT = {LMC_EMISSION: shade.R_EM, LMC_AMBIENT: shade.R_AM,
+             LMC_DIFFUSE: shade.R_DM | shade.R_ALPHA, LMC_SPECULAR: shade.R_SM,
+             LMC_AD: shade.R_AM | shade.R_DM | shade.R_ALPHA}
 
 
-def shade_rgb(eye, normals, mats, lights, model, vcol=None, override=None,
-              lmcolor=LMC_COLOR, mid=None):
+def shade_rgb(geom, mats, lights, model, vcol, override, lmcolor=LMC_COLOR, sign=1.0):
     """The lighting equation for N vertices; returns (N, 4) colours in 0..255.
 
-    eye: (N, 3) eye-space positions; normals: (N, 3) unit eye-space normals;
-    mats: material property dicts, mid: (N,) index of each vertex's material
-    in mats (None: every vertex has mats[0]); lights: [(props, LightBinding)];
-    model: light-model property dict.
+    geom = (eye4 (N, 4) eye-space positions, normals (N, 3) in object space,
+    xf (N,) index of each vertex's normal matrix, normal matrices (X, 3, 3),
+    renormalise (X,) bool, mid (N,) index of each vertex's material in mats);
+    mats: material property dicts; lights: [(props, LightBinding)];
+    model: light-model property dict; vcol (N, 4) and override (N,): the
+    colour calls lmcolor redirects into the material; sign -1 lights -N
+    (TWOSIDE back faces).  One numba loop (geometry/shade.py).
     """
-    if isinstance(mats, dict):
-        mats = [mats]
-    n = len(eye)
-    em, am, dm, sm, alpha = _material_arrays(mats, mid, n, vcol, override, lmcolor)
-    col = em + am * np.asarray(model[AMBIENT])
-    local_viewer = model[LOCALVIEWER][0] != 0.0
-    v = _normalize(-eye) if local_viewer else np.broadcast_to((0.0, 0.0, 1.0), (n, 3))
-    k0, k1 = model[ATTENUATION]
-    k2 = model[ATTENUATION2][0]
-    sh = _shininess(mats, mid, n)
-    shiny = sh != 0.0
-    any_shiny = bool(np.any(shiny))
-    for props, bind in lights:
-        p = bind.eye_position
-        ci = np.asarray(props[LCOLOR])
-        ali = np.asarray(props[AMBIENT])
-        if p[3] == 0.0:
-            l = np.broadcast_to(_normalize(p[None, :3]), (n, 3))
-            factor = np.ones(n)
-        else:
-            to_light = p[:3] / p[3] - eye
-            d = np.sqrt((to_light * to_light).sum(axis=1))
-            l = _normalize(to_light)
-            denom = k0 + k1 * d + k2 * d * d
-            factor = np.divide(1.0, denom, out=np.zeros(n), where=denom > 0)
-            expo, spread = props[SPOTLIGHT]
-            if spread != 180.0:
-                cosang = -(l * bind.eye_spot).sum(axis=1)
-                inside = cosang >= np.cos(np.radians(spread))
-                factor = factor * np.where(inside, np.maximum(cosang, 0.0) ** expo, 0.0)
-        ndotl = (normals * l).sum(axis=1)
-        diff = np.maximum(ndotl, 0.0)
-        term = am * ali + dm * ci * diff[:, None]
-        if any_shiny:                  # SHININESS 0: no specular term
-            h = _normalize(l + v)
-            ndoth = np.maximum((normals * h).sum(axis=1), 0.0)
-            spec = np.where((ndotl > 0.0) & shiny, ndoth ** sh, 0.0)
-            term = term + sm * ci * spec[:, None]
-        col = col + factor[:, None] * term
-    out = np.empty((n, 4))
-    out[:, :3] = np.clip(col, 0.0, 1.0) * 255.0
-    out[:, 3] = np.clip(alpha, 0.0, 1.0) * 255.0
+    eye4, nobj, xf, nmats, renorm, mid = geom
+    out = np.empty((len(eye4), 4))
+    shade.light_vertices(eye4, nobj, xf, nmats, renorm, mid, shade.material_table(mats),
+                         np.ascontiguousarray(vcol, np.float64),
+                         np.ascontiguousarray(override, np.bool_), _REDIRECT.get(lmcolor, 0),
+                         shade.light_table(lights), shade.model_row(model), float(sign), out)
     return out
 
 
