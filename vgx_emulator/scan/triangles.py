@@ -12,8 +12,10 @@ Bands are handed out interleaved (``band_order``) so that both threads get
 work when a scene fills only part of the window.
 
 Per triangle row the walker solves the three integer edge inequalities for
-the exact span of covered pixels (``edge_span``: floor divisions, no
-rounding), so the fill rule is decided per row, not per pixel.  Along the
+the exact span of covered pixels, so the fill rule is decided per row, not
+per pixel: each edge's floor quotient is divided once per triangle and band
+and then stepped row to row with its remainder (``edge_dda``/``edge_step``,
+exact integers, no rounding).  Along the
 span (the span processor):
 
 * z is a fixed-point DDA: the start value is evaluated in float64 from the
@@ -146,14 +148,41 @@ def triangle_kernel(key):
 
 
 @helper
-def edge_span(A, c, xl, xr):
-    """Narrow [xl, xr] to the pixels x with ``A * (x << SHIFT) + c >= 0``
-    (one edge of a row; ``c`` = B * py + C).  Exact integer arithmetic."""
+def edge_dda(A, c, S):
+    """Start of an edge's exact row walk.  The pixels x of a row with
+    ``A * (x << SHIFT) + c >= 0`` are x >= -(c // D) (A > 0) or
+    x <= c // D (A < 0), D = |A| << SHIFT; A = 0: every x when c >= 0.
+    Returns (q, m, D, sq, sm): q = c // D, m = c - q * D (0 <= m < D), and
+    the same of the per-row step S = B << SHIFT, so that each next row's
+    quotient is two additions and a compare (edge_step), not a division."""
+    D = (A if A > 0 else -A) << SHIFT
+    if D == 0:
+        D = 1                   # A = 0: q is c itself
+    q = c // D
+    sq = S // D
+    return q, c - q * D, D, sq, S - sq * D
+
+
+@helper
+def edge_step(q, m, D, sq, sm):
+    """(c + S) // D and its remainder from those of c and S."""
+    q += sq
+    m += sm
+    if m >= D:
+        m -= D
+        q += 1
+    return q, m
+
+
+@helper
+def edge_clip(A, q, xl, xr):
+    """Narrow [xl, xr] to one edge's covered pixels of the row (q = c // D,
+    see edge_dda).  Exact integer arithmetic: the fill rule's bias is in C."""
     if A > 0:
-        xl = max(xl, -(c // (A << SHIFT)))
+        xl = max(xl, -q)
     elif A < 0:
-        xr = min(xr, c // ((-A) << SHIFT))
-    elif c < 0:
+        xr = min(xr, q)
+    elif q < 0:
         xr = xl - 1
     return xl, xr
 
@@ -260,14 +289,30 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                                   + (cols[c, 3] - cols[a, 3]) * dwc, CFRAC)
                 tlevel = tsel[i] >> 1 if texture else 0
                 tbil = (tsel[i] & 1) == 1 if texture else False
+                # the edges' row values and their exact quotients, stepped per row
+                py = y0 << SHIFT
+                ev0 = B0 * py + C0
+                ev1 = B1 * py + C1
+                ev2 = B2 * py + C2
+                S0 = B0 << SHIFT
+                S1 = B1 << SHIFT
+                S2 = B2 << SHIFT
+                q0, m0, D0, sq0, sm0 = edge_dda(A0, ev0, S0)
+                q1, m1, D1, sq1, sm1 = edge_dda(A1, ev1, S1)
+                q2, m2, D2, sq2, sm2 = edge_dda(A2, ev2, S2)
                 for y in range(y0, y1 + 1):
-                    py = y << SHIFT
-                    r0 = B0 * py + C0
-                    r1 = B1 * py + C1
-                    r2 = B2 * py + C2
-                    xl, xr = edge_span(A0, r0, box[i, 0], box[i, 1])
-                    xl, xr = edge_span(A1, r1, xl, xr)
-                    xl, xr = edge_span(A2, r2, xl, xr)
+                    r0 = ev0
+                    r1 = ev1
+                    r2 = ev2
+                    xl, xr = edge_clip(A0, q0, box[i, 0], box[i, 1])
+                    xl, xr = edge_clip(A1, q1, xl, xr)
+                    xl, xr = edge_clip(A2, q2, xl, xr)
+                    ev0 += S0
+                    ev1 += S1
+                    ev2 += S2
+                    q0, m0 = edge_step(q0, m0, D0, sq0, sm0)
+                    q1, m1 = edge_step(q1, m1, D1, sq1, sm1)
+                    q2, m2 = edge_step(q2, m2, D2, sq2, sm2)
                     if xl > xr:
                         continue
                     cr0 = cb0[min(y, cb0.shape[0] - 1)]
