@@ -1046,3 +1046,32 @@ def test_material_zero_between_polygons_turns_lighting_off(monkeypatch):
     _close(_rgba(), _expected((LAST[0], LAST[1], 0), (0, 0, 1), m, lights, lm))
     _close(_rgba(CX + 16, CY), (255, 0, 0, 255))
     assert len(calls) == 2
+
+
+def test_colour_map_lighting_per_material_in_one_batch(monkeypatch):
+    """Colour-map lighting (reference 9.5): index = amb + (dif - amb) * D +
+    (spe - dif) * S.  Lit head-on (D = 1) with SHININESS 0 (S = 0) each
+    polygon takes its own material's diffuse index, with the materials bound
+    between polygons of one batch."""
+    from irisgl import COLORINDEXES, cmode
+    calls = _count_batches(monkeypatch)
+    prefsize(32, 16)
+    winopen("cmap lighting")
+    cmode()
+    gconfig()
+    mmode(MVIEWING)
+    ortho(-0.5, 31.5, -0.5, 15.5, -100.0, 100.0)
+    shademodel(FLAT)
+    indexes = [(16.0, 100.0, 200.0), (300.0, 700.0, 900.0)]
+    for i, (a, d, s) in enumerate(indexes):
+        lmdef(DEFMATERIAL, i + 1, 0, [COLORINDEXES, a, d, s, LMNULL])
+    lmdef(DEFLIGHT, 1, 0, [POSITION, 0.0, 0.0, 1.0, 0.0, LMNULL])
+    lmdef(DEFLMODEL, 1, 0, [LMNULL])
+    lmbind(LIGHT0, 1)
+    lmbind(LMODEL, 1)
+    for i in range(2):
+        lmbind(MATERIAL, i + 1)
+        _polygon((0, 0, 1), pts=[(x + 16 * i, y) for x, y in SQUARE])
+    got = [int(lrectread(CX + 16 * i, CY, CX + 16 * i, CY)[0, 0]) & 0xFFF for i in range(2)]
+    assert got == [100, 700]
+    assert len(calls) == 1

@@ -19,6 +19,8 @@ TWOSIDE lights back faces with -N and BACKMATERIAL (MATERIAL when none bound).
 Colour-map lighting (reference 9.5): index = amb + (diff-amb)*D + (spec-diff)*S
 with D, S the summed diffuse and specular intensities, clamped to spec.
 """
+import math
+
 import numpy as np
 
 from ..errors import fail
@@ -163,6 +165,40 @@ def _shininess(mats, mid, n):
     return _per_vertex(mats, mid, SHININESS, n)[:, 0]
 
 
+def _material_table(mats):
+    """(M, shade.MCOLS) rows of material property dicts."""
+    t = np.empty((len(mats), shade.MCOLS))
+    for k, m in enumerate(mats):
+        t[k, shade.M_EM:shade.M_EM + 3] = m[EMISSION]
+        t[k, shade.M_AM:shade.M_AM + 3] = m[AMBIENT]
+        t[k, shade.M_DM:shade.M_DM + 3] = m[DIFFUSE]
+        t[k, shade.M_SM:shade.M_SM + 3] = m[SPECULAR]
+        t[k, shade.M_ALPHA] = m[ALPHA][0]
+        t[k, shade.M_SH] = m[SHININESS][0]
+    return t
+
+
+def _light_table(lights):
+    """(L, shade.LCOLS) rows of [(props, LightBinding)]."""
+    t = np.zeros((len(lights), shade.LCOLS))
+    for k, (props, bind) in enumerate(lights):
+        t[k, shade.L_POS:shade.L_POS + 4] = bind.eye_position
+        t[k, shade.L_COL:shade.L_COL + 3] = props[LCOLOR]
+        t[k, shade.L_AMB:shade.L_AMB + 3] = props[AMBIENT]
+        t[k, shade.L_SPOT:shade.L_SPOT + 3] = bind.eye_spot
+        expo, spread = props[SPOTLIGHT]
+        t[k, shade.L_EXPO] = expo
+        t[k, shade.L_COS] = math.cos(math.radians(spread))
+        t[k, shade.L_ISSPOT] = spread != 180.0
+    return t
+
+
+def _model_row(model):
+    k0, k1 = model[ATTENUATION]
+    return np.array([*model[AMBIENT], model[LOCALVIEWER][0], k0, k1, model[ATTENUATION2][0]],
+                    np.float64)
+
+
 _REDIRECT = {LMC_EMISSION: shade.R_EM, LMC_AMBIENT: shade.R_AM,
              LMC_DIFFUSE: shade.R_DM | shade.R_ALPHA, LMC_SPECULAR: shade.R_SM,
              LMC_AD: shade.R_AM | shade.R_DM | shade.R_ALPHA}
@@ -181,18 +217,17 @@ def shade_rgb(geom, mats, lights, model, vcol, override, lmcolor=LMC_COLOR, sign
     """
     eye4, nobj, xf, nmats, renorm, mid = geom
     out = np.empty((len(eye4), 4))
-    shade.light_vertices(eye4, nobj, xf, nmats, renorm, mid, shade.material_table(mats),
+    shade.light_vertices(eye4, nobj, xf, nmats, renorm, mid, _material_table(mats),
                          np.ascontiguousarray(vcol, np.float64),
                          np.ascontiguousarray(override, np.bool_), _REDIRECT.get(lmcolor, 0),
-                         shade.light_table(lights), shade.model_row(model), float(sign), out)
+                         _light_table(lights), _model_row(model), float(sign), out)
     return out
 
 
 def shade_index(eye, normals, mats, lights, model, mid=None):
     """Colour-map lighting (reference 9.5): an index per vertex, in column 0.
-    mats and mid as in shade_rgb."""
-    if isinstance(mats, dict):
-        mats = [mats]
+    mats: material property dicts; mid (N,) each vertex's index in mats, or
+    None when there is one."""
     n = len(eye)
     amb, dif, spe = _per_vertex(mats, mid, COLORINDEXES, n).T
     sh = _shininess(mats, mid, n)

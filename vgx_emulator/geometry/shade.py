@@ -5,7 +5,7 @@ The numpy form of the same equation cost a dozen whole-array temporaries
 per light and about 4 ms for five thousand vertices; this loop does the
 normal transform, the divide by w and every light for one vertex at a time
 in registers (0.2 ms).  Tables are built once per batch by
-:func:`lighting.shade_rgb`:
+:func:`lighting.shade_rgb` from the lmdef property dicts:
 
 - materials ``mtab`` (M, 14): Em (3), Am (3), Dm (3), Sm (3), ALPHA, SHININESS;
 - lights ``ltab`` (L, 16): eye POSITION (4), LCOLOR (3), AMBIENT (3),
@@ -18,8 +18,6 @@ COLOUR_SINCE_BIND flag is set: bit 0 emission, 1 ambient, 2 diffuse,
 3 specular, 4 alpha (LMC_DIFFUSE and LMC_AD take the colour's alpha).
 """
 import math
-
-import numpy as np
 
 from ..jit import njit
 
@@ -161,40 +159,3 @@ def light_vertices(eye4, nobj, xf, nmats, renorm, mid, mtab, vcol, override, red
         out[i, 1] = _byte(g)
         out[i, 2] = _byte(b)
         out[i, 3] = _byte(alpha)
-
-
-def material_table(mats):
-    """(M, MCOLS) rows of material property dicts."""
-    from .lighting import ALPHA, AMBIENT, DIFFUSE, EMISSION, SHININESS, SPECULAR
-    t = np.empty((len(mats), MCOLS))
-    for k, m in enumerate(mats):
-        t[k, M_EM:M_EM + 3] = m[EMISSION]
-        t[k, M_AM:M_AM + 3] = m[AMBIENT]
-        t[k, M_DM:M_DM + 3] = m[DIFFUSE]
-        t[k, M_SM:M_SM + 3] = m[SPECULAR]
-        t[k, M_ALPHA] = m[ALPHA][0]
-        t[k, M_SH] = m[SHININESS][0]
-    return t
-
-
-def light_table(lights):
-    """(L, LCOLS) rows of [(props, LightBinding)]."""
-    from .lighting import AMBIENT, LCOLOR, SPOTLIGHT
-    t = np.zeros((len(lights), LCOLS))
-    for k, (props, bind) in enumerate(lights):
-        t[k, L_POS:L_POS + 4] = bind.eye_position
-        t[k, L_COL:L_COL + 3] = props[LCOLOR]
-        t[k, L_AMB:L_AMB + 3] = props[AMBIENT]
-        t[k, L_SPOT:L_SPOT + 3] = bind.eye_spot
-        expo, spread = props[SPOTLIGHT]
-        t[k, L_EXPO] = expo
-        t[k, L_COS] = math.cos(math.radians(spread))
-        t[k, L_ISSPOT] = spread != 180.0
-    return t
-
-
-def model_row(model):
-    from .lighting import AMBIENT, ATTENUATION, ATTENUATION2, LOCALVIEWER
-    k0, k1 = model[ATTENUATION]
-    return np.array([*model[AMBIENT], model[LOCALVIEWER][0], k0, k1, model[ATTENUATION2][0]],
-                    np.float64)
