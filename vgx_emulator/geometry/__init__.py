@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import warn
 from . import assemble, clip, lighting, viewport
 from .assemble import CLOSEDLINE, POLYGON, QSTRIP, TMESH
-from .batch import COLOUR_SINCE_BIND, FILLED, LAST_WAS_NORMAL, LINES
+from .batch import FILLED, LAST_WAS_NORMAL, LINES
 from .stack import MVIEWING
 
 
@@ -107,13 +107,11 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
     idx = np.nonzero(lit)[0]
     nm = [lighting.normal_matrix(t.modelview) for t in xforms]
     front, back_mats = _materials(st, defs, mats)
-    mid = attrs[idx, 13].astype(np.int64) if len(front) > 1 else np.zeros(len(idx), np.int64)
     model = defs[lighting.DEFLMODEL][st.lmodel]
     lights = [(defs[lighting.DEFLIGHT].get(b.index, lighting.defaults(lighting.DEFLIGHT)), b)
               for _, b in sorted(st.lights.items())]
-    override = (flags[idx] & COLOUR_SINCE_BIND) != 0
-    vcol = attrs[idx, 3:7]
     if not st.rgb:
+        mid = attrs[idx, 13].astype(np.int64) if len(front) > 1 else None
         mats_n = np.stack([m for m, _ in nm])
         ortho = np.array([o for _, o in nm])
         n_eye = np.einsum("ni,nij->nj", attrs[idx, 0:3], mats_n[xf[idx]])
@@ -123,18 +121,15 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
         n_eye = np.where(renorm[:, None], safe, n_eye)
         w = eye4[idx, 3:4]
         eye = np.divide(eye4[idx, :3], w, out=np.zeros((len(idx), 3)), where=w != 0)
-        col[idx] = lighting.shade_index(eye, n_eye, front, lights, model,
-                                        mid if len(front) > 1 else None)
+        col[idx] = lighting.shade_index(eye, n_eye, front, lights, model, mid)
         return col, None
-    geom = (np.ascontiguousarray(eye4[idx]), np.ascontiguousarray(attrs[idx, 0:3]), xf[idx],
-            np.ascontiguousarray(np.stack([m for m, _ in nm])),
-            np.array([st.nmode == 1 or not o for _, o in nm]), mid)
-    col[idx] = lighting.shade_rgb(geom, front, lights, model, vcol, override, lmcolor)
+    geom = (idx, eye4, attrs, np.ascontiguousarray(np.stack([m for m, _ in nm])),
+            np.array([st.nmode == 1 or not o for _, o in nm]))
+    lighting.shade_rgb(geom, front, lights, model, col, lmcolor)
     if model[lighting.TWOSIDE][0] == 0.0:
         return col, None
-    back = col.copy()
-    back[idx] = lighting.shade_rgb(geom, back_mats, lights, model, vcol, override, lmcolor,
-                                   sign=-1.0)
+    back = attrs[:, 3:7].copy()
+    lighting.shade_rgb(geom, back_mats, lights, model, back, lmcolor, sign=-1.0)
     return col, back
 
 
@@ -222,46 +217,46 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     with np.errstate(all="ignore"):     # a non-finite normal or matrix: dropped below
         col, back = _light(st, defs, eye4, attrs, xf, batch.xforms, batch.mats) if shade else \
             (attrs[:, 3:7].copy(), None)
-    bad = ~(np.isfinite(pos).all(axis=1) & np.isfinite(attrs[:, :7]).all(axis=1)
-            & np.isfinite(clp).all(axis=1) & np.isfinite(col).all(axis=1))
-    if tc is not None:
-        bad |= ~np.isfinite(tc).all(axis=1)
+    bad = np.zeros(len(pos), bool)
+    for a, k in ((pos, 4), (attrs, 7), (clp, 4), (col, 4)) + \
+            (((tc, 2),) if tc is not None else ()):
+        clip.mark_nonfinite(a, k, bad)
     gx, gy = viewport.guard_factors(viewport_rect)
     work = WindowWork(klass=batch.klass, twoside=back is not None)
     table = batch.prim_table()
     near_far = st.depth_range
     if batch.klass == FILLED:
         tris, prov = _assemble_filled(batch, pos, table)
-        drop = bad[tris].any(axis=1) | bad[prov]
-        work.dropped = int(drop.sum())
-        tris, prov = tris[~drop], prov[~drop]
-        with np.errstate(invalid="ignore"):     # inf - inf of dropped vertices
-            codes = clip.outcodes(clp, gx, gy)
-        ca, cb, cc = codes[tris[:, 0]], codes[tris[:, 1]], codes[tris[:, 2]]
-        inside = (ca | cb | cc) == 0
-        reject = (ca & cb & cc) != 0
-        cross = ~inside & ~reject
-        cols = [clp, col] + ([back] if back is not None else []) + \
-            ([tc] if tc is not None else [])
-        verts = np.concatenate(cols, axis=1)
-        src_in = np.nonzero(inside)[0]
-        keep_t, keep_p, keep_o = [tris[inside]], [prov[inside]], [src_in]
-        if cross.any():
-            ci = np.nonzero(cross)[0]
-            newv, nt, npv, src = clip.clip_triangles(verts, tris[ci], prov[ci], codes, gx, gy)
+        codes = clip.outcodes(clp, gx, gy)
+        fate = clip.classify(tris, prov, bad, codes)
+        work.dropped = int(np.count_nonzero(fate == clip.DROPPED))
+        inside = fate == clip.INSIDE
+        cross = np.nonzero(fate == clip.CROSSING)[0]
+        work.tris, work.prov = tris[inside], prov[inside]
+        extra = ([back] if back is not None else []) + ([tc] if tc is not None else [])
+        if len(cross):
+            verts = np.concatenate([clp, col] + extra, axis=1)
+            newv, nt, npv, src = clip.clip_triangles(verts, tris[cross], prov[cross], codes,
+                                                     gx, gy)
             verts = np.concatenate((verts, newv))
-            keep_t.append(nt)
-            keep_p.append(npv)
-            keep_o.append(ci[src])      # pieces keep the place of their source
-        order = np.argsort(np.concatenate(keep_o), kind="stable")
-        work.tris = np.concatenate(keep_t)[order]
-        work.prov = np.concatenate(keep_p)[order]
+            # pieces keep the place of their source
+            order = np.argsort(np.concatenate((np.nonzero(inside)[0], cross[src])),
+                               kind="stable")
+            work.tris = np.concatenate((work.tris, nt))[order]
+            work.prov = np.concatenate((work.prov, npv))[order]
+            clp = np.ascontiguousarray(verts[:, :4])
+            col = np.ascontiguousarray(verts[:, 4:8])
+            k = 8
+            if back is not None:
+                back = np.ascontiguousarray(verts[:, 8:12])
+                k = 12
+            if tc is not None:
+                tc = verts[:, k:k + 2]
         # only vertices that a kept triangle uses are converted: an original
         # vertex replaced by clipping may lie at w <= 0 or far outside the band
-        with np.errstate(all="ignore"):
-            xw, yw, zw = viewport.to_window(verts[:, :4], viewport_rect, near_far, snap)
-        ok = viewport.representable(xw, yw, zw)
-        lost = ~ok[work.tris].all(axis=1)
+        work.X, work.Y, work.Z, ok, lost = viewport.window_fixed(
+            clp, work.tris, tuple(int(x) for x in viewport_rect),
+            (float(near_far[0]), float(near_far[1])), bool(snap))
         if lost.any():
             # a kept triangle with a vertex the divide cannot place: the clip
             # vertex (0, 0, 0, 0) (v4f of zeros, a vertex at the light of a
@@ -269,20 +264,11 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
             # to window (0, 0) or overflow the fixed point
             work.dropped += int(lost.sum())
             work.tris, work.prov = work.tris[~lost], work.prov[~lost]
-        used = np.zeros(len(verts), bool)
-        used[work.tris.ravel()] = True
-        ok &= used
-        xw, yw, zw = np.where(ok, xw, 0.0), np.where(ok, yw, 0.0), np.where(ok, zw, 0.0)
-        work.X = viewport.to_fixed(xw)
-        work.Y = viewport.to_fixed(yw)
-        work.Z = zw
-        work.C = np.ascontiguousarray(verts[:, 4:8])
-        work.CB = np.ascontiguousarray(verts[:, 8:12]) if back is not None else work.C
+        work.C = col
+        work.CB = back if back is not None else col
         if tc is not None:
-            k = 12 if back is not None else 8
-            w = np.where(ok & (verts[:, 3] != 0), verts[:, 3], 1.0)
-            work.TC = np.ascontiguousarray(
-                np.stack((verts[:, k] / w, verts[:, k + 1] / w, 1.0 / w), axis=1))
+            w = np.where(ok & (clp[:, 3] != 0), clp[:, 3], 1.0)
+            work.TC = np.ascontiguousarray(np.stack((tc[:, 0] / w, tc[:, 1] / w, 1.0 / w), axis=1))
     elif batch.klass == LINES:
         starts, counts = table[:, 1], table[:, 2]
         closed = table[:, 0] == CLOSEDLINE

@@ -34,14 +34,62 @@ def distances(v, gx, gy):
                      w + z, w - z, w - W_EPSILON), axis=1)
 
 
+@njit(error_model="numpy")
 def outcodes(v, gx, gy):
-    """Bit p set when the vertex is outside plane p; non-finite -> all bits."""
-    d = distances(v, gx, gy)
-    out = d < 0
-    codes = (out * (1 << np.arange(NPLANES))).sum(axis=1).astype(np.int64)
-    bad = ~np.isfinite(v).all(axis=1)
-    codes[bad] = (1 << NPLANES) - 1
+    """Bit p set when the vertex (row of v (N, 4)) is outside plane p;
+    non-finite -> all bits.  The distances are those of ``distances``."""
+    n = v.shape[0]
+    codes = np.zeros(n, np.int64)
+    for i in range(n):
+        x = v[i, 0]
+        y = v[i, 1]
+        z = v[i, 2]
+        w = v[i, 3]
+        if not (np.isfinite(x) and np.isfinite(y) and np.isfinite(z) and np.isfinite(w)):
+            codes[i] = (1 << NPLANES) - 1
+            continue
+        c = 0
+        for p in range(NPLANES):
+            if _dist(v[i], p, gx, gy) < 0:
+                c |= 1 << p
+        codes[i] = c
     return codes
+
+
+@njit
+def mark_nonfinite(a, ncols, bad):
+    """bad[i] |= a non-finite value among the first ``ncols`` columns of row i."""
+    for i in range(a.shape[0]):
+        for k in range(ncols):
+            if not np.isfinite(a[i, k]):
+                bad[i] = True
+                break
+
+
+#: classify: what becomes of each assembled triangle
+DROPPED, INSIDE, OUTSIDE, CROSSING = 0, 1, 2, 3
+
+
+@njit
+def classify(tris, prov, bad, codes):
+    """Per triangle: DROPPED (a vertex or its provoking vertex is non-finite),
+    OUTSIDE (every vertex outside one plane), INSIDE (no vertex outside any
+    plane) or CROSSING (clip_triangles cuts it)."""
+    t = tris.shape[0]
+    out = np.empty(t, np.int8)
+    for i in range(t):
+        a = tris[i, 0]
+        b = tris[i, 1]
+        c = tris[i, 2]
+        if bad[a] or bad[b] or bad[c] or bad[prov[i]]:
+            out[i] = DROPPED
+        elif (codes[a] | codes[b] | codes[c]) == 0:
+            out[i] = INSIDE
+        elif (codes[a] & codes[b] & codes[c]) != 0:
+            out[i] = OUTSIDE
+        else:
+            out[i] = CROSSING
+    return out
 
 
 @njit
@@ -62,7 +110,7 @@ def _dist(v, p, gx, gy):
         return w + z
     if p == 5:
         return w - z
-    return w - 1e-30
+    return w - W_EPSILON
 
 
 @njit

@@ -25,6 +25,7 @@ import numpy as np
 
 from ..errors import fail
 from . import shade
+from .batch import COLOUR_SINCE_BIND
 
 DEFMATERIAL, DEFLIGHT, DEFLMODEL = 0, 100, 200
 EMISSION, AMBIENT, DIFFUSE, SPECULAR, SHININESS, COLORINDEXES, ALPHA = 1, 2, 3, 4, 5, 6, 7
@@ -204,24 +205,23 @@ _REDIRECT = {LMC_EMISSION: shade.R_EM, LMC_AMBIENT: shade.R_AM,
              LMC_AD: shade.R_AM | shade.R_DM | shade.R_ALPHA}
 
 
-def shade_rgb(geom, mats, lights, model, vcol, override, lmcolor=LMC_COLOR, sign=1.0):
-    """The lighting equation for N vertices; returns (N, 4) colours in 0..255.
+def shade_rgb(geom, mats, lights, model, out, lmcolor=LMC_COLOR, sign=1.0):
+    """The lighting equation for the vertices ``idx``: their (N, 4) colours
+    in 0..255 are written into ``out`` rows idx.
 
-    geom = (eye4 (N, 4) eye-space positions, normals (N, 3) in object space,
-    xf (N,) index of each vertex's normal matrix, normal matrices (X, 3, 3),
-    renormalise (X,) bool, mid (N,) index of each vertex's material in mats);
-    mats: material property dicts; lights: [(props, LightBinding)];
-    model: light-model property dict; vcol (N, 4) and override (N,): the
-    colour calls lmcolor redirects into the material; sign -1 lights -N
-    (TWOSIDE back faces).  One numba loop (geometry/shade.py).
+    geom = (idx (n,) the lit vertices, eye4 (N, 4) eye-space positions,
+    recs (N, RECORD) attribute records (normal, colour, flags, transform,
+    material index into mats: batch.py), normal matrices (X, 3, 3),
+    renormalise (X,) bool); mats: material property dicts; lights:
+    [(props, LightBinding)]; model: light-model property dict.  A colour
+    sent since the bind (COLOUR_SINCE_BIND) is redirected by ``lmcolor``;
+    sign -1 lights -N (TWOSIDE back faces).  One numba loop
+    (geometry/shade.py).
     """
-    eye4, nobj, xf, nmats, renorm, mid = geom
-    out = np.empty((len(eye4), 4))
-    shade.light_vertices(eye4, nobj, xf, nmats, renorm, mid, _material_table(mats),
-                         np.ascontiguousarray(vcol, np.float64),
-                         np.ascontiguousarray(override, np.bool_), _REDIRECT.get(lmcolor, 0),
+    idx, eye4, recs, nmats, renorm = geom
+    shade.light_vertices(idx, eye4, recs, nmats, renorm, _material_table(mats),
+                         COLOUR_SINCE_BIND, _REDIRECT.get(lmcolor, 0),
                          _light_table(lights), _model_row(model), float(sign), out)
-    return out
 
 
 def shade_index(eye, normals, mats, lights, model, mid=None):

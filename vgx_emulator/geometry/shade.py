@@ -37,26 +37,29 @@ def _byte(x):
 
 
 @njit
-def light_vertices(eye4, nobj, xf, nmats, renorm, mid, mtab, vcol, override, redirect,
+def light_vertices(idx, eye4, recs, nmats, renorm, mtab, override_flag, redirect,
                    ltab, lm, sign, out):
-    """out[i] = the lit RGBA (0..255) of vertex i.  eye4: (n, 4) eye-space
-    positions; nobj: (n, 3) object-space normals, transformed by nmats[xf[i]]
-    and renormalised where renorm[xf[i]]; sign -1.0 lights the back (-N)."""
-    n = eye4.shape[0]
+    """out[i] = the lit RGBA (0..255) of each vertex i in idx.  eye4: (N, 4)
+    eye-space positions; recs: (N, RECORD) attribute records (batch.py):
+    the object-space normal (0:3), transformed by nmats[transform] and
+    renormalised where renorm[transform]; the colour (3:7), redirected by
+    lmcolor when the flags (7) have ``override_flag``; the transform (8) and
+    the material's row in mtab (13).  sign -1.0 lights the back (-N)."""
     local_viewer = lm[3] != 0.0
     k0 = lm[4]
     k1 = lm[5]
     k2 = lm[6]
-    for i in range(n):
+    for i in idx:
+        xf = int(recs[i, 8])
         # normal in eye space
-        m = nmats[xf[i]]
-        ox = nobj[i, 0]
-        oy = nobj[i, 1]
-        oz = nobj[i, 2]
+        m = nmats[xf]
+        ox = recs[i, 0]
+        oy = recs[i, 1]
+        oz = recs[i, 2]
         nx = ox * m[0, 0] + oy * m[1, 0] + oz * m[2, 0]
         ny = ox * m[0, 1] + oy * m[1, 1] + oz * m[2, 1]
         nz = ox * m[0, 2] + oy * m[1, 2] + oz * m[2, 2]
-        if renorm[xf[i]]:
+        if renorm[xf]:
             ln = math.sqrt(nx * nx + ny * ny + nz * nz)
             if ln > 0.0:
                 nx /= ln
@@ -76,17 +79,17 @@ def light_vertices(eye4, nobj, xf, nmats, renorm, mid, mtab, vcol, override, red
         else:
             px = py = pz = 0.0
         # material, with the lmcolor redirection
-        t = mtab[mid[i]]
+        t = mtab[int(recs[i, 13])]
         er, eg, eb = t[M_EM], t[M_EM + 1], t[M_EM + 2]
         ar, ag, ab = t[M_AM], t[M_AM + 1], t[M_AM + 2]
         dr, dg, db = t[M_DM], t[M_DM + 1], t[M_DM + 2]
         sr, sg, sb = t[M_SM], t[M_SM + 1], t[M_SM + 2]
         alpha = t[M_ALPHA]
         sh = t[M_SH]
-        if redirect != 0 and override[i]:
-            cr = vcol[i, 0] / 255.0
-            cg = vcol[i, 1] / 255.0
-            cb = vcol[i, 2] / 255.0
+        if redirect != 0 and (int(recs[i, 7]) & override_flag) != 0:
+            cr = recs[i, 3] / 255.0
+            cg = recs[i, 4] / 255.0
+            cb = recs[i, 5] / 255.0
             if redirect & R_EM:
                 er, eg, eb = cr, cg, cb
             if redirect & R_AM:
@@ -96,7 +99,7 @@ def light_vertices(eye4, nobj, xf, nmats, renorm, mid, mtab, vcol, override, red
             if redirect & R_SM:
                 sr, sg, sb = cr, cg, cb
             if redirect & R_ALPHA:
-                alpha = vcol[i, 3] / 255.0
+                alpha = recs[i, 6] / 255.0
         r = er + ar * lm[0]
         g = eg + ag * lm[1]
         b = eb + ab * lm[2]

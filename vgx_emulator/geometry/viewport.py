@@ -9,9 +9,12 @@ Reference section 2 (viewport), Decisions 4 and 5:
 - subpixel(FALSE), the VGX default, snaps x and y to the nearest pixel
   centre; subpixel(TRUE) keeps them to 1/2**SUBPIXEL_BITS of a pixel.
 """
+import math
+
 import numpy as np
 
 from .. import config
+from ..jit import njit
 
 ONE = 1 << config.SUBPIXEL_BITS
 FIXED_LIMIT = 1 << 24          # |fixed-point coordinate| the rasterizer takes
@@ -47,6 +50,51 @@ def representable(xw, yw, zw):
     limit = FIXED_LIMIT / ONE
     with np.errstate(invalid="ignore"):
         return np.isfinite(zw) & (np.abs(xw) < limit) & (np.abs(yw) < limit)
+
+
+@njit(error_model="numpy")
+def window_fixed(v, tris, viewport, depth_range, snap):
+    """to_window, representable and to_fixed in one pass over the vertices
+    (N, 4) that the triangles (T, 3) use, with the same arithmetic.
+    Returns (X, Y int64 fixed point, Z float64 window z, ok (N,) vertex
+    representable, lost (T,) a triangle with a vertex that is not); unused
+    and unrepresentable vertices get 0."""
+    l, r, b, t = viewport
+    near, far = depth_range
+    sx = float(r - l + 1)
+    sy = float(t - b + 1)
+    zmid = (far + near) * 0.5
+    zscale = (far - near) * 0.5
+    limit = FIXED_LIMIT / ONE
+    n = v.shape[0]
+    used = np.zeros(n, np.bool_)
+    for i in range(tris.shape[0]):
+        used[tris[i, 0]] = True
+        used[tris[i, 1]] = True
+        used[tris[i, 2]] = True
+    X = np.zeros(n, np.int64)
+    Y = np.zeros(n, np.int64)
+    Z = np.zeros(n)
+    ok = np.zeros(n, np.bool_)
+    for i in range(n):
+        if not used[i]:
+            continue
+        w = v[i, 3]
+        xw = (l - 0.5) + (v[i, 0] / w + 1.0) * 0.5 * sx
+        yw = (b - 0.5) + (v[i, 1] / w + 1.0) * 0.5 * sy
+        zw = zmid + (v[i, 2] / w) * zscale
+        if snap:
+            xw = math.floor(xw + 0.5)
+            yw = math.floor(yw + 0.5)
+        if np.isfinite(zw) and abs(xw) < limit and abs(yw) < limit:
+            ok[i] = True
+            X[i] = np.int64(math.floor(xw * ONE + 0.5))
+            Y[i] = np.int64(math.floor(yw * ONE + 0.5))
+            Z[i] = zw
+    lost = np.zeros(tris.shape[0], np.bool_)
+    for i in range(tris.shape[0]):
+        lost[i] = not (ok[tris[i, 0]] and ok[tris[i, 1]] and ok[tris[i, 2]])
+    return X, Y, Z, ok, lost
 
 
 def guard_factors(viewport):

@@ -18,20 +18,24 @@ and then stepped row to row with its remainder (``edge_dda``/``edge_step``,
 exact integers, no rounding).  Along the
 span (the span processor):
 
-* z is a fixed-point DDA: the start value is evaluated in float64 from the
-  exact edge values at the first pixel, converted to ``ZFRAC`` fractional
-  bits, and stepped by a per-triangle fixed-point dz/dx; rounding to the
-  stored integer is ``floor(z + 1/2)`` as before (Decision 4).  The error of
-  the DDA is below 2**-19 of a z unit over 4096 pixels.  A pixel's z depends
-  only on its triangle, row and span start, never on the band or thread, so
-  multipass algorithms that redraw the same triangles with ZF_EQUAL get the
-  same z in every pass.
-* Gouraud colours are the same DDA with ``CFRAC`` bits; flat colour is one
-  packed word per triangle (the provoking vertex).
+* z is a fixed-point plane: per triangle, its value at the box corner pixel
+  is evaluated in float64 from the exact edge values there and converted
+  to ``ZFRAC`` fractional bits, with fixed-point steps per pixel and per
+  row (``plane_fixed``); a span starts at ``ref + dy * sy + dx * sx`` (two
+  integer multiplies, no float work per row) and steps by sx along x.
+  Rounding to the stored integer is ``floor(z + 1/2)`` (Decision 4).  The
+  error is below 2**-16 of a z unit anywhere in a scissored box.  A
+  pixel's z depends only on its triangle and position, never on the band,
+  span or thread, so multipass algorithms that redraw the same triangles
+  with ZF_EQUAL get the same z in every pass.  A sliver whose plane does
+  not fit the bounds of plane_fixed (steps of 2**14 z units a pixel and
+  more) evaluates each span start exactly instead.
+* Gouraud colours are the same planes with ``CFRAC`` bits; flat colour is
+  one packed word per triangle (the provoking vertex).
 * textured triangles compute barycentric weights per pixel in float64
   (texture coordinates perspective-correct: s/w, t/w and 1/w interpolated,
   then divided), sample and apply the texture environment
-  (raster/texture.py); their z is the same DDA as untextured ones.
+  (raster/texture.py); their z is the same plane as untextured ones.
 
 Each pixel then goes through :func:`raster.fragment.stages`, a pure
 function written without branches on runtime state; the walker loads and
@@ -197,6 +201,32 @@ def to_fixed(v, frac):
     return np.int64(math.floor(f + 0.5))
 
 
+#: plane_fixed's bounds: a start value below 2**60 and steps below 2**44
+#: keep ``start + sy * dy + sx * dx`` inside int64 for |dx|, |dy| < 2**14
+#: (every pixel offset inside a scissored box)
+PLANE_START_LIMIT = float(1 << 60)
+PLANE_STEP_LIMIT = float(1 << 44)
+
+
+@helper
+def plane_fixed(v0, dvb, dvc, wb, wc, dwb, dwc, dwby, dwcy, frac):
+    """A linear attribute ``v0 + dvb * wb + dvc * wc`` (wb, wc: barycentric
+    weights of vertices b and c at a reference pixel) in fixed point with
+    ``frac`` bits: (value at the reference, step per pixel in x, step per
+    row, ok).  ok is False when a value is out of the bounds above (a
+    degenerate sliver): the caller then evaluates each span start exactly."""
+    f = float(1 << frac)
+    ref = (v0 + dvb * wb + dvc * wc) * f
+    sx = (dvb * dwb + dvc * dwc) * f
+    sy = (dvb * dwby + dvc * dwcy) * f
+    ok = abs(ref) < PLANE_START_LIMIT and abs(sx) < PLANE_STEP_LIMIT and \
+        abs(sy) < PLANE_STEP_LIMIT
+    if not ok:
+        return np.int64(0), np.int64(0), np.int64(0), False
+    return (np.int64(math.floor(ref + 0.5)), np.int64(math.floor(sx + 0.5)),
+            np.int64(math.floor(sy + 0.5)), True)
+
+
 @helper
 def band_order(i, nbands):
     """The band the i-th iteration draws: a stride coprime with nbands near
@@ -265,28 +295,51 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 o0 = 0 if owns_edge(X[b], Y[b], X[c], Y[c]) else 1
                 o1 = 0 if owns_edge(X[c], Y[c], X[a], Y[a]) else 1
                 o2 = 0 if owns_edge(X[a], Y[a], X[b], Y[b]) else 1
-                # per-pixel steps of the barycentric weights of b and c
+                # per-pixel and per-row steps of the barycentric weights of b
+                # and c, and the weights at the box corner pixel (xb, yb)
                 step = float(1 << SHIFT) * ia
                 dwb = A1 * step
                 dwc = A2 * step
+                dwby = B1 * step
+                dwcy = B2 * step
+                xb = box[i, 0]
+                yb = box[i, 2]
+                wbr = (A1 * (xb << SHIFT) + B1 * (yb << SHIFT) + C1 + o1) * ia
+                wcr = (A2 * (xb << SHIFT) + B2 * (yb << SHIFT) + C2 + o2) * ia
                 za = Z[a]
                 zba = Z[b] - za
                 zca = Z[c] - za
-                dz = to_fixed(zba * dwb + zca * dwc, ZFRAC)
+                zref, dz, dzy, zok = plane_fixed(za, zba, zca, wbr, wcr, dwb, dwc,
+                                                 dwby, dwcy, ZFRAC)
+                if not zok:
+                    dz = to_fixed(zba * dwb + zca * dwc, ZFRAC)
                 # flat colour: the provoking vertex
                 pv = prov[i]
                 word = fragment.colour_word(cmode, cols[pv, 0], cols[pv, 1],
                                             cols[pv, 2], cols[pv, 3])
                 dr = dg = db = da = np.int64(0)
+                rref = gref = bref = aref = np.int64(0)
+                dry = dgy = dby = day = np.int64(0)
+                cok = False
                 if interp:
-                    dr = to_fixed((cols[b, 0] - cols[a, 0]) * dwb
-                                  + (cols[c, 0] - cols[a, 0]) * dwc, CFRAC)
-                    dg = to_fixed((cols[b, 1] - cols[a, 1]) * dwb
-                                  + (cols[c, 1] - cols[a, 1]) * dwc, CFRAC)
-                    db = to_fixed((cols[b, 2] - cols[a, 2]) * dwb
-                                  + (cols[c, 2] - cols[a, 2]) * dwc, CFRAC)
-                    da = to_fixed((cols[b, 3] - cols[a, 3]) * dwb
-                                  + (cols[c, 3] - cols[a, 3]) * dwc, CFRAC)
+                    ra = cols[a, 0]
+                    ga = cols[a, 1]
+                    ba = cols[a, 2]
+                    aa = cols[a, 3]
+                    rref, dr, dry, rok = plane_fixed(ra, cols[b, 0] - ra, cols[c, 0] - ra,
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                    gref, dg, dgy, gok = plane_fixed(ga, cols[b, 1] - ga, cols[c, 1] - ga,
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                    bref, db, dby, bok = plane_fixed(ba, cols[b, 2] - ba, cols[c, 2] - ba,
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                    aref, da, day, aok = plane_fixed(aa, cols[b, 3] - aa, cols[c, 3] - aa,
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                    cok = rok and gok and bok and aok
+                    if not cok:
+                        dr = to_fixed((cols[b, 0] - ra) * dwb + (cols[c, 0] - ra) * dwc, CFRAC)
+                        dg = to_fixed((cols[b, 1] - ga) * dwb + (cols[c, 1] - ga) * dwc, CFRAC)
+                        db = to_fixed((cols[b, 2] - ba) * dwb + (cols[c, 2] - ba) * dwc, CFRAC)
+                        da = to_fixed((cols[b, 3] - aa) * dwb + (cols[c, 3] - aa) * dwc, CFRAC)
                 tlevel = tsel[i] >> 1 if texture else 0
                 tbil = (tsel[i] & 1) == 1 if texture else False
                 # the edges' row values and their exact quotients, stepped per row
@@ -324,19 +377,33 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     e0 = A0 * px + r0
                     e1 = A1 * px + r1
                     e2 = A2 * px + r2
-                    wb = (e1 + o1) * ia
-                    wc = (e2 + o2) * ia
-                    z0 = to_fixed(za + zba * wb + zca * wc, ZFRAC)
+                    # span start values: the fixed-point planes at (xl, y), or
+                    # for a sliver outside their bounds the exact weights
+                    ox = xl - xb
+                    oy = y - yb
+                    if zok:
+                        z0 = zref + dzy * oy + dz * ox
+                    else:
+                        z0 = to_fixed(za + zba * ((e1 + o1) * ia) + zca * ((e2 + o2) * ia),
+                                      ZFRAC)
                     cr = cg = cbl = ca = np.int64(0)
                     if interp:
-                        cr = to_fixed(cols[a, 0] + (cols[b, 0] - cols[a, 0]) * wb
-                                      + (cols[c, 0] - cols[a, 0]) * wc, CFRAC)
-                        cg = to_fixed(cols[a, 1] + (cols[b, 1] - cols[a, 1]) * wb
-                                      + (cols[c, 1] - cols[a, 1]) * wc, CFRAC)
-                        cbl = to_fixed(cols[a, 2] + (cols[b, 2] - cols[a, 2]) * wb
-                                       + (cols[c, 2] - cols[a, 2]) * wc, CFRAC)
-                        ca = to_fixed(cols[a, 3] + (cols[b, 3] - cols[a, 3]) * wb
-                                      + (cols[c, 3] - cols[a, 3]) * wc, CFRAC)
+                        if cok:
+                            cr = rref + dry * oy + dr * ox
+                            cg = gref + dgy * oy + dg * ox
+                            cbl = bref + dby * oy + db * ox
+                            ca = aref + day * oy + da * ox
+                        else:
+                            wb = (e1 + o1) * ia
+                            wc = (e2 + o2) * ia
+                            cr = to_fixed(cols[a, 0] + (cols[b, 0] - cols[a, 0]) * wb
+                                          + (cols[c, 0] - cols[a, 0]) * wc, CFRAC)
+                            cg = to_fixed(cols[a, 1] + (cols[b, 1] - cols[a, 1]) * wb
+                                          + (cols[c, 1] - cols[a, 1]) * wc, CFRAC)
+                            cbl = to_fixed(cols[a, 2] + (cols[b, 2] - cols[a, 2]) * wb
+                                           + (cols[c, 2] - cols[a, 2]) * wc, CFRAC)
+                            ca = to_fixed(cols[a, 3] + (cols[b, 3] - cols[a, 3]) * wb
+                                          + (cols[c, 3] - cols[a, 3]) * wc, CFRAC)
                     # the DDAs start half a unit up so that >> rounds to nearest
                     zf = z0 + zhalf
                     cr += chalf
