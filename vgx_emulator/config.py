@@ -31,8 +31,10 @@ PARALLEL_MIN_PIXELS = 1 << 18
 JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,
                    boundscheck=False)
 
-#: parallel kernels (prange over bands); VGX_THREADS / NUMBA_NUM_THREADS
-#: choose how many threads.
+#: parallel kernels (the triangle walker's bands on a thread pool, the
+#: accumulation buffer's prange over rows); NUMBA_NUM_THREADS (or
+#: numba.set_num_threads) chooses how many threads; VGX_PARALLEL=0 runs
+#: everything on one.
 PARALLEL = os.environ.get("VGX_PARALLEL", "1") != "0"
 
 #: Virtual screen of the VGX (porting conventions section 4).

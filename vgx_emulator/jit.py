@@ -41,7 +41,9 @@ def inline(fn):
 
 
 def pnjit(fn):
-    """A kernel whose outer loop is a ``prange`` over framebuffer bands."""
+    """A kernel with a ``prange`` loop (numba threads; the accumulation
+    buffer's rows).  The triangle walker uses Python threads instead
+    (scan.triangles.run_bands)."""
     return numba.njit(parallel=config.PARALLEL, **_opts)(fn)
 
 

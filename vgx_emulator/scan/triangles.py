@@ -5,11 +5,13 @@ culling, CCW ordering, integer edge equations with the fill rule
 (:mod:`scan.fixed`), bounding box clipped to the scissor, 1/area.
 
 ``triangle_kernel(key)`` returns the walker compiled for one raster state
-(:mod:`raster.variants`).  It loops over framebuffer bands in parallel; each
-band walks every triangle that overlaps it in submission order, so a pixel
-sees its triangles in the order they were drawn whatever the thread count.
-Bands are handed out interleaved (``band_order``) so that both threads get
-work when a scene fills only part of the window.
+(:mod:`raster.variants`).  It runs over framebuffer bands of
+``config.BAND_ROWS`` rows on several threads (``run_bands``: the compiled
+walker releases the GIL); each band walks every triangle that overlaps it
+in submission order, so a pixel sees its triangles in the order they were
+drawn whatever the thread count.  Bands are handed out interleaved
+(``band_starts``) so that both threads get work when a scene fills only
+part of the window.
 
 Per triangle row the walker solves the three integer edge inequalities for
 the exact span of covered pixels, so the fill rule is decided per row, not
@@ -43,12 +45,15 @@ stores the row views around it, so the span loop of the common variants
 (z test and write, stencil counting, plain colour writes) compiles to SIMD
 code.
 """
+import functools
 import math
+from concurrent.futures import ThreadPoolExecutor
 
+import numba
 import numpy as np
 
 from .. import config
-from ..jit import helper, njit, pnjit, prange
+from ..jit import helper, njit
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.blend import key_terms
@@ -144,10 +149,11 @@ _kernels = {}
 
 
 def triangle_kernel(key):
-    """The walker for one raster key (see raster.variants.RasterKey)."""
+    """The walker for one raster key (see raster.variants.RasterKey), as a
+    callable over every band (run_bands)."""
     k = _kernels.get(key)
     if k is None:
-        k = _kernels[key] = _make_triangle_kernel(*key)
+        k = _kernels[key] = functools.partial(run_bands, _make_triangle_kernel(*key))
     return k
 
 
@@ -227,16 +233,45 @@ def plane_fixed(v0, dvb, dvc, wb, wc, dwb, dwc, dwby, dwcy, frac):
             np.int64(math.floor(sy + 0.5)), True)
 
 
-@helper
-def band_order(i, nbands):
-    """The band the i-th iteration draws: a stride coprime with nbands near
-    nbands / 2, so each thread's contiguous share of iterations is spread
-    over the whole window (load balance), while every band is still drawn
-    exactly once."""
+@functools.lru_cache(maxsize=64)
+def band_starts(sy0, sy1):
+    """First rows of the bands of rows sy0..sy1, in the order the threads
+    take them: a stride coprime with the band count near half of it, so
+    that each thread's contiguous share of the list is spread over the
+    whole window (load balance), while every band is still drawn exactly
+    once."""
+    nbands = (sy1 - sy0 + config.BAND_ROWS) // config.BAND_ROWS
     stride = nbands // 2 + 1
     while math.gcd(stride, nbands) != 1:
         stride += 1
-    return (i * stride) % nbands
+    order = (np.arange(nbands) * stride) % nbands
+    return sy0 + order * config.BAND_ROWS
+
+
+_pool = None
+
+
+def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
+    """Run a compiled walker over every band: ``numba.get_num_threads()``
+    contiguous shares of band_starts, one on this thread and the others on
+    a thread pool (the walker releases the GIL).  Each band is drawn by one
+    thread in submission order, so the pixels do not depend on the number
+    of threads.  Python threads rather than a numba ``prange``: numba's
+    parallel lowering doubled the walker's compile time (cold start)."""
+    global _pool
+    bands = band_starts(int(ip[fragment.P_SY0]), int(ip[fragment.P_SY1]))
+    n = min(numba.get_num_threads(), len(bands)) if config.PARALLEL else 1
+    if n <= 1:
+        walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex)
+        return
+    if _pool is None or _pool._max_workers < n - 1:
+        _pool = ThreadPoolExecutor(max_workers=max(n - 1, 1), thread_name_prefix="vgx-band")
+    shares = np.array_split(bands, n)
+    jobs = [_pool.submit(walk, share, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex)
+            for share in shares[1:]]
+    walk(shares[0], setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex)
+    for job in jobs:
+        job.result()
 
 
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
@@ -249,26 +284,23 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     interp = gouraud and color and not texture
     cmax = 0xFFF if cmode else 255
 
-    @pnjit
-    def walk(setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
+    @njit
+    def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
+        """Rows of every triangle in the bands starting at rows ``bands``
+        (run_bands), in submission order."""
         edges, verts, box, inv_area, back, valid = setup
         texels, tinfo, tsel, tp = tex
+        cb0, cb1, zb, sb, pat = planes
         _ = src_hash
         prm = fragment.params(ip)
-        cb0, cb1, zb, sb, pat = planes
+        bt = fragment.blend_terms(blend, bterms, prm)
         npat = prm[fragment.P_PATSIZE]
         orgx = prm[fragment.P_ORGX]
         orgy = prm[fragment.P_ORGY]
         zlo = prm[fragment.P_ZLO]
         zhi = prm[fragment.P_ZHI]
-        sy0 = prm[fragment.P_SY0]
         sy1 = prm[fragment.P_SY1]
-        nbands = (sy1 - sy0 + band_rows) // band_rows
-        for it in prange(nbands):
-            band = band_order(it, nbands)
-            # (inside the band loop: a tuple cannot cross into a parallel region)
-            bt = fragment.blend_terms(blend, bterms, fragment.params(ip))
-            ylo = sy0 + band * band_rows
+        for ylo in bands:
             yhi = min(ylo + band_rows - 1, sy1)
             for i in range(valid.shape[0]):
                 if not valid[i]:
