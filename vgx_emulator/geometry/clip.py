@@ -34,13 +34,19 @@ def distances(v, gx, gy):
                      w + z, w - z, w - W_EPSILON), axis=1)
 
 
-@njit(error_model="numpy")
 def outcodes(v, gx, gy):
-    """Bit p set when the vertex (row of v (N, 4)) is outside plane p;
-    non-finite -> all bits.  The distances are those of ``distances``."""
-    n = v.shape[0]
-    codes = np.zeros(n, np.int64)
-    for i in range(n):
+    """(N,) int64: bit p set when the vertex (row of v (N, 4)) is outside
+    plane p; non-finite -> all bits.  The distances are those of
+    ``distances``.  (Arrays are made outside the kernels of this module:
+    with an empty cache numba's np.zeros costs its own compile.)"""
+    codes = np.empty(len(v), np.int64)
+    _outcodes(v, gx, gy, codes)
+    return codes
+
+
+@njit(error_model="numpy")
+def _outcodes(v, gx, gy, codes):
+    for i in range(v.shape[0]):
         x = v[i, 0]
         y = v[i, 1]
         z = v[i, 2]
@@ -53,7 +59,6 @@ def outcodes(v, gx, gy):
             if _dist(v[i], p, gx, gy) < 0:
                 c |= 1 << p
         codes[i] = c
-    return codes
 
 
 @njit
@@ -70,14 +75,18 @@ def mark_nonfinite(a, ncols, bad):
 DROPPED, INSIDE, OUTSIDE, CROSSING = 0, 1, 2, 3
 
 
-@njit
 def classify(tris, prov, bad, codes):
-    """Per triangle: DROPPED (a vertex or its provoking vertex is non-finite),
-    OUTSIDE (every vertex outside one plane), INSIDE (no vertex outside any
-    plane) or CROSSING (clip_triangles cuts it)."""
-    t = tris.shape[0]
-    out = np.empty(t, np.int8)
-    for i in range(t):
+    """(T,) int8 per triangle: DROPPED (a vertex or its provoking vertex is
+    non-finite), OUTSIDE (every vertex outside one plane), INSIDE (no vertex
+    outside any plane) or CROSSING (clip_triangles cuts it)."""
+    out = np.empty(len(tris), np.int8)
+    _classify(tris, prov, bad, codes, out)
+    return out
+
+
+@njit
+def _classify(tris, prov, bad, codes, out):
+    for i in range(tris.shape[0]):
         a = tris[i, 0]
         b = tris[i, 1]
         c = tris[i, 2]
@@ -89,7 +98,6 @@ def classify(tris, prov, bad, codes):
             out[i] = OUTSIDE
         else:
             out[i] = CROSSING
-    return out
 
 
 @njit

@@ -52,13 +52,23 @@ def representable(xw, yw, zw):
         return np.isfinite(zw) & (np.abs(xw) < limit) & (np.abs(yw) < limit)
 
 
-@njit(error_model="numpy")
 def window_fixed(v, tris, viewport, depth_range, snap):
     """to_window, representable and to_fixed in one pass over the vertices
     (N, 4) that the triangles (T, 3) use, with the same arithmetic.
     Returns (X, Y int64 fixed point, Z float64 window z, ok (N,) vertex
     representable, lost (T,) a triangle with a vertex that is not); unused
-    and unrepresentable vertices get 0."""
+    and unrepresentable vertices get 0.  (The arrays are made here: with an
+    empty cache numba's np.zeros in a kernel costs its own compile.)"""
+    n = len(v)
+    out = (np.zeros(n, np.int64), np.zeros(n, np.int64), np.zeros(n), np.zeros(n, bool),
+           np.zeros(len(tris), bool), np.zeros(n, bool))
+    _window_fixed(v, tris, viewport, depth_range, snap, out)
+    return out[:5]
+
+
+@njit(error_model="numpy")
+def _window_fixed(v, tris, viewport, depth_range, snap, out):
+    X, Y, Z, ok, lost, used = out
     l, r, b, t = viewport
     near, far = depth_range
     sx = float(r - l + 1)
@@ -67,15 +77,10 @@ def window_fixed(v, tris, viewport, depth_range, snap):
     zscale = (far - near) * 0.5
     limit = FIXED_LIMIT / ONE
     n = v.shape[0]
-    used = np.zeros(n, np.bool_)
     for i in range(tris.shape[0]):
         used[tris[i, 0]] = True
         used[tris[i, 1]] = True
         used[tris[i, 2]] = True
-    X = np.zeros(n, np.int64)
-    Y = np.zeros(n, np.int64)
-    Z = np.zeros(n)
-    ok = np.zeros(n, np.bool_)
     for i in range(n):
         if not used[i]:
             continue
@@ -91,10 +96,8 @@ def window_fixed(v, tris, viewport, depth_range, snap):
             X[i] = np.int64(math.floor(xw * ONE + 0.5))
             Y[i] = np.int64(math.floor(yw * ONE + 0.5))
             Z[i] = zw
-    lost = np.zeros(tris.shape[0], np.bool_)
     for i in range(tris.shape[0]):
         lost[i] = not (ok[tris[i, 0]] and ok[tris[i, 1]] and ok[tris[i, 2]])
-    return X, Y, Z, ok, lost
 
 
 def guard_factors(viewport):

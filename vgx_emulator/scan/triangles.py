@@ -68,28 +68,16 @@ CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
 
 
 def _make_setup():
-    """setup_triangles, compiled with KERNEL_SOURCE_HASH as a closure constant
+    """setup_triangles' kernel, compiled with KERNEL_SOURCE_HASH as a closure constant
     so that its disk cache follows fixed.py as well (jit.helper)."""
     src_hash = KERNEL_SOURCE_HASH
 
     @njit
-    def setup_triangles(X, Y, tris, cull, sx0, sx1, sy0, sy1):
-        """Edge equations and boxes for T triangles.
-
-        Returns (edges (T, 3, 3) int64, verts (T, 3) int64 in CCW order,
-        box (T, 4) int64 [x0, x1, y0, y1] in pixels, inv_area (T,), back (T,)
-        bool, valid (T,) bool).  Edge k is opposite vertex k, so E_k / area is
-        the barycentric weight of vertex k.
-        """
+    def setup_kernel(X, Y, tris, cull, sx0, sx1, sy0, sy1, out):
+        """Fill ``out`` (setup_triangles) for the triangles."""
         _ = src_hash
-        t = tris.shape[0]
-        edges = np.zeros((t, 3, 3), np.int64)
-        verts = np.zeros((t, 3), np.int64)
-        box = np.zeros((t, 4), np.int64)
-        inv_area = np.zeros(t)
-        back = np.zeros(t, np.bool_)
-        valid = np.zeros(t, np.bool_)
-        for i in range(t):
+        edges, verts, box, inv_area, back, valid = out
+        for i in range(tris.shape[0]):
             a = tris[i, 0]
             b = tris[i, 1]
             c = tris[i, 2]
@@ -138,12 +126,27 @@ def _make_setup():
             inv_area[i] = 1.0 / area
             back[i] = is_back
             valid[i] = True
-        return edges, verts, box, inv_area, back, valid
 
-    return setup_triangles
+    return setup_kernel
 
 
-setup_triangles = _make_setup()
+_setup_kernel = _make_setup()
+
+
+def setup_triangles(X, Y, tris, cull, sx0, sx1, sy0, sy1):
+    """Edge equations and boxes for T triangles.
+
+    Returns (edges (T, 3, 3) int64, verts (T, 3) int64 in CCW order, box
+    (T, 4) int64 [x0, x1, y0, y1] in pixels, inv_area (T,), back (T,) bool,
+    valid (T,) bool); culled, degenerate and off-scissor triangles are not
+    valid.  Edge k is opposite vertex k, so E_k / area is the barycentric
+    weight of vertex k.  (The arrays are made here, not in the kernel: with
+    an empty cache numba's np.zeros in a kernel costs its own compile.)"""
+    t = len(tris)
+    out = (np.zeros((t, 3, 3), np.int64), np.zeros((t, 3), np.int64),
+           np.zeros((t, 4), np.int64), np.zeros(t), np.zeros(t, bool), np.zeros(t, bool))
+    _setup_kernel(X, Y, tris, cull, sx0, sx1, sy0, sy1, out)
+    return out
 
 _kernels = {}
 
