@@ -134,7 +134,7 @@ def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
     snew = sold
     if stencil:
         m = prm[P_SMASK]
-        spass = depth.compare(prm[P_SFUNC], prm[P_SREF] & m, sold & m)
+        spass = depth.compare(prm[P_SFUNC], np.int32(prm[P_SREF] & m), np.int32(sold & m))
         # Decision 1: without a z-buffer a passing fragment takes the pass op
         zp = ztest and zpass
         tx = prm[P_ZX] if zp else prm[P_PX]

@@ -446,7 +446,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     cbl += chalf
                     ca += chalf
                     for x in range(xl, xr + 1):
-                        zq = min(max(zf >> ZFRAC, zlo), zhi)
+                        zq = np.int32(min(max(zf >> ZFRAC, zlo), zhi))
                         zf += dz
                         w = word
                         if interp:
@@ -492,7 +492,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         if pattern:
                             patbit = pat[(y + orgy) % npat, (x + orgx) % npat]
                         u = np.uint64(x)      # unsigned index: no wraparound test
-                        zold = np.int64(zr[u]) if ztest else np.int64(0)
+                        zold = np.int32(zr[u]) if ztest else np.int32(0)
                         sold = np.int32(sr[u]) if stencil else np.int32(0)
                         c0 = np.int64(cr0[u]) if color else np.int64(0)
                         c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
