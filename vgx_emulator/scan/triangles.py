@@ -62,7 +62,7 @@ from .fixed import SHIFT, edge_coefficients, owns_edge
 
 #: fractional bits of the z and colour DDAs along a span
 ZFRAC = 30
-CFRAC = 24
+CFRAC = 16
 
 CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
 
@@ -375,6 +375,12 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         dg = to_fixed((cols[b, 1] - ga) * dwb + (cols[c, 1] - ga) * dwc, CFRAC)
                         db = to_fixed((cols[b, 2] - ba) * dwb + (cols[c, 2] - ba) * dwc, CFRAC)
                         da = to_fixed((cols[b, 3] - aa) * dwb + (cols[c, 3] - aa) * dwc, CFRAC)
+                # per-pixel colour steps in int32: two covered pixels of a row
+                # differ by at most 0xFFF, so a step of a longer span fits
+                dr32 = np.int32(dr)
+                dg32 = np.int32(dg)
+                db32 = np.int32(db)
+                da32 = np.int32(da)
                 tlevel = tsel[i] >> 1 if texture else 0
                 tbil = (tsel[i] & 1) == 1 if texture else False
                 # the edges' row values and their exact quotients, stepped per row
@@ -441,26 +447,28 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                                           + (cols[c, 3] - cols[a, 3]) * wc, CFRAC)
                     # the DDAs start half a unit up so that >> rounds to nearest
                     zf = z0 + zhalf
-                    cr += chalf
-                    cg += chalf
-                    cbl += chalf
-                    ca += chalf
+                    # colours step in int32 (CFRAC = 16 keeps 0xFFF << 16 inside
+                    # it; numba widens int32 operations, hence the casts)
+                    r32 = np.int32(cr + chalf)
+                    g32 = np.int32(cg + chalf)
+                    b32 = np.int32(cbl + chalf)
+                    a32 = np.int32(ca + chalf)
                     for x in range(xl, xr + 1):
                         zq = np.int32(min(max(zf >> ZFRAC, zlo), zhi))
                         zf += dz
                         w = word
                         if interp:
-                            ri = min(max(cr >> CFRAC, 0), cmax)
-                            cr += dr
+                            ri = min(max(np.int32(r32 >> CFRAC), np.int32(0)), np.int32(cmax))
+                            r32 = np.int32(r32 + dr32)
                             if cmode:
                                 w = ri & 0xFFF
                             else:
-                                gi = min(max(cg >> CFRAC, 0), 255)
-                                bi = min(max(cbl >> CFRAC, 0), 255)
-                                ai = min(max(ca >> CFRAC, 0), 255)
-                                cg += dg
-                                cbl += db
-                                ca += da
+                                gi = min(max(np.int32(g32 >> CFRAC), np.int32(0)), np.int32(255))
+                                bi = min(max(np.int32(b32 >> CFRAC), np.int32(0)), np.int32(255))
+                                ai = min(max(np.int32(a32 >> CFRAC), np.int32(0)), np.int32(255))
+                                g32 = np.int32(g32 + dg32)
+                                b32 = np.int32(b32 + db32)
+                                a32 = np.int32(a32 + da32)
                                 w = (ai << 24) | (bi << 16) | (gi << 8) | ri
                         if texture:
                             w0 = (e0 + o0) * ia
