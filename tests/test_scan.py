@@ -502,6 +502,31 @@ def test_tmesh_registers_with_a_swap_in_the_middle():
     np.testing.assert_array_equal((_read() & 0xFF).astype(int), _count_array(sets))
 
 
+def test_same_tmesh_table_with_and_without_a_swap_in_turn():
+    """The same primitive table (one tmesh of six vertices) drawn in turn
+    without and with a swaptmesh: the assembled triangles, which the
+    geometry keeps per table for replayed display lists, follow the swap
+    every time (the register model computes each)."""
+    _window()
+    subpixel(TRUE)
+    pts = [(3, 3), (3, 28), (14, 4), (16, 26), (28, 10), (29, 29)]
+    for events in ([0, 1, 2, 3, 4, 5], [0, 1, 2, "swap", 3, 4, 5]) * 2:
+        sets = [ref.triangle_pixels(*[pts[i] for i in t], W, H)
+                for t in ref.tmesh_triangles(events)]
+        _blank()
+        blendfunction(BF_ONE, BF_ONE)
+        cpack(1)
+        bgntmesh()
+        for e in events:
+            if e == "swap":
+                swaptmesh()
+            else:
+                v2f(pts[e])
+        endtmesh()
+        np.testing.assert_array_equal((_read() & 0xFF).astype(int), _count_array(sets))
+        blendfunction(BF_ONE, BF_ZERO)
+
+
 def test_trailing_swaptmesh_does_not_leak_into_the_next_tmesh():
     """The fan idiom 'v; swaptmesh()' may end a tmesh with a swap; the next
     tmesh starts with fresh registers and pointer, so with backface(TRUE) its

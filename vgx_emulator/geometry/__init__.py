@@ -13,6 +13,7 @@ It returns the window-space work for the scan converter.  Non-finite input
 never crashes: a primitive touching a non-finite position, normal, colour or
 transformed vertex is dropped with a warning naming the calls.
 """
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -159,8 +160,31 @@ def texture_coordinates(st, pos, eye4, attrs, xf, xforms):
     return tc[:, :2] / q[:, None]
 
 
+#: assembled triangles of recent primitive tables (see _assemble_filled)
+_ASSEMBLED = OrderedDict()
+_ASSEMBLED_SIZE = 64
+
+
 def _assemble_filled(batch, pos, table):
-    """Triangles of every filled primitive, in submission order."""
+    """Triangles of every filled primitive, in submission order.  Without
+    concave polygons the result depends only on the primitive table and
+    the swaptmesh marks, so it is kept for the last _ASSEMBLED_SIZE tables:
+    a display list replayed every frame (or every pass) is assembled once,
+    as a compiled display list would be."""
+    if table[:, 3].any():
+        return _assemble_table(batch, pos, table)
+    key = (table.tobytes(), tuple(batch.swaps))
+    hit = _ASSEMBLED.get(key)
+    if hit is None:
+        hit = _ASSEMBLED[key] = _assemble_table(batch, pos, table)
+        if len(_ASSEMBLED) > _ASSEMBLED_SIZE:
+            _ASSEMBLED.popitem(last=False)
+    else:
+        _ASSEMBLED.move_to_end(key)
+    return hit
+
+
+def _assemble_table(batch, pos, table):
     kinds, starts, counts = table[:, 0], table[:, 1], table[:, 2]
     concave = table[:, 3] != 0
     seq = np.arange(len(table))
