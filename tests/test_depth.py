@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 
 from irisgl import *  # noqa: F401,F403
-from irisgl import (FALSE, GOURAUD, GD_ZMAX, GD_ZMIN, SRC_FRONT, SRC_ZBUFFER, TRUE, ZF_ALWAYS,
+from irisgl import (FALSE, GD_ZMAX, GD_ZMIN, SRC_FRONT, SRC_ZBUFFER, TRUE, ZF_ALWAYS,
                     ZF_EQUAL, ZF_GEQUAL, ZF_GREATER, ZF_LEQUAL, ZF_LESS, ZF_NEVER,
-                    ZF_NOTEQUAL, RGBmode, bgnpolygon, c3i, clear, cpack, czclear,
+                    ZF_NOTEQUAL, RGBmode, bgnpolygon, clear, cpack, czclear,
                     endpolygon, gconfig, getgdesc, lgetdepth, lrectread, lsetdepth, ortho,
-                    prefsize, readsource, scrmask, shademodel, subpixel, v3f, viewport,
-                    winopen, wmpack, zbuffer, zclear, zfunction, zwritemask)
+                    prefsize, readsource, scrmask, subpixel, v3f, viewport, winopen, wmpack,
+                    zbuffer, zclear, zfunction, zwritemask)
 try:                                   # tests/ on sys.path (pytest, no __init__.py)
     from reference import raster as ref
 except ImportError:                    # tests imported as a package
@@ -394,32 +394,40 @@ def test_z_interpolated_linearly_in_screen_space():
 
 
 def test_sliver_z_exact_where_the_z_plane_overflows():
-    """A needle 1/128 pixel thick whose third vertex is far away in z: z
-    changes by about 5e7 per row across it, a step too steep for the
-    walker's fixed-point plane (scan.triangles.plane_fixed: |step| < 2**44
-    with 30 fractional bits), so each span start is evaluated from the exact
-    edge values.  Along the bottom edge A-B (owned by the fill rule; B's
-    pixel is on the right edge B-C, not owned) z is linear in x, and the
-    red channel (whose plane stays in bounds) too."""
+    """A diagonal needle 1/256 pixel wide whose third vertex is far away in
+    z: its z gradient is so steep that the walker's fixed-point plane over
+    the needle's 30 x 30 pixel box does not fit 2**62 (checked here from
+    the plane equation), so each span start is evaluated from the exact edge
+    values (scan.triangles.plane_fixed).  z stays exact at every pixel."""
     _window()
     subpixel(TRUE)
-    shademodel(GOURAUD)
     lsetdepth(-1000000, 1000000)
     zbuffer(TRUE)
     zfunction(ZF_ALWAYS)
-    vs = [(1.0, 2.0, -0.5, 0), (30.0, 2.0, 0.5, 255), (30.0, 2.0 + 1 / 128, 0.9, 128)]
+    vs = [(1.0, 1.0, -0.5), (30.0, 30.0, 0.5), (30.0 + 1 / 256, 30.0, 0.9)]
+    cpack(RED)
     bgnpolygon()
-    for x, y, zn, red in vs:
-        c3i((red, 0, 0))
+    for x, y, zn in vs:
         v3f((x, y, -zn))
     endpolygon()
-    z, c = _z(), _c()
-    assert (z != ZMAX).sum() == 29 and (z[2, 1:30] != ZMAX).all()
-    for x in range(1, 30):
-        t = Fraction(x - 1, 29)
-        exact_z = Fraction(-500000) + t * 1000000
-        assert abs(int(z[2, x]) - exact_z) <= Fraction(1, 2) + Fraction(1, 100), x
-        assert abs((int(c[2, x]) & 0xFF) - 255 * t) <= 1, x
+    z = _z()
+    placed = ref.place([(x, y) for x, y, _ in vs])
+    vz = [Fraction(zn) * 1000000 for _, _, zn in vs]
+    (x0, y0), (x1, y1), (x2, y2) = placed
+    det = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
+    gx = ((vz[1] - vz[0]) * (y2 - y0) - (vz[2] - vz[0]) * (y1 - y0)) / det
+    gy = ((vz[2] - vz[0]) * (x1 - x0) - (vz[1] - vz[0]) * (x2 - x0)) / det
+    assert (abs(gx) * 30 + abs(gy) * 30) * 2 ** 30 > 2 ** 62      # the premise
+    pix = ref.triangle_pixels(*placed, W, H)
+    assert len(pix) >= 20
+    for x in range(W):
+        for y in range(H):
+            if (x, y) in pix:
+                wts = ref.barycentric(*placed, x, y)
+                exact = sum(wt * zz for wt, zz in zip(wts, vz))
+                assert abs(int(z[y, x]) - exact) <= Fraction(1, 2) + Fraction(1, 100), (x, y)
+            else:
+                assert z[y, x] == ZMAX
 
 
 def test_hidden_surface_independent_of_order():

@@ -21,6 +21,7 @@ from .geometry import lighting, stack
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
 from .geometry.batch import CLASS_OF, FILLED, VertexBatch
 from .raster import blend, fragment
+from .raster import depth as _depth
 from .raster import stencil as _stencil
 from .raster.variants import RasterKey
 from .scan.spans import fill, fill_pattern, fill_z
@@ -176,17 +177,36 @@ class VGX:
             tex = self._texturing(win) if (b.klass == FILLED and shade) else None
             work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport,
                                           texturing=tex is not None, shade=shade)
+            zmaxima = self._z_maxima(win) if work.klass == FILLED else None
             key, planes, ip = self._raster_setup(win, work, work.klass == FILLED)
+            ip[fragment.P_ZMAX] = zmaxima is not None
             key = key._replace(texture=tex is not None)
             if key.gouraud and work.klass == FILLED and tex is None and work.constant_colour():
                 key = key._replace(gouraud=False)   # same pixels, no interpolation
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
-            scan.scan_batch(work, key, planes, ip, cull, not st.subpixel, tex)
+            scan.scan_batch(work, key, planes, ip, cull, not st.subpixel, tex, zmaxima)
         if b.open is not None:
             b.keep_open_primitive()
         else:
             b.reset()
+
+    def _z_maxima(self, win):
+        """The z bank's per-segment maxima (framebuffer/zmax.py) when the
+        pass may skip spans against them: z test LESS, EQUAL or LEQUAL, z
+        written in full or not at all (its writes then only lower z), and a
+        fragment failing the z test changes nothing (stencil off, or its
+        fail and z-fail ops ST_KEEP).  Otherwise None."""
+        st, fb = win.st, win.fb
+        if not st.zbuffer or \
+                st.zfunc not in (_depth.ZF_LESS, _depth.ZF_EQUAL, _depth.ZF_LEQUAL):
+            return None
+        if st.zwritemask & 0xFFFFFF not in (0, 0xFFFFFF):
+            return None
+        if st.stencil_on and fb.stencil is not None and \
+                (st.stencil[3] != _stencil.ST_KEEP or st.stencil[4] != _stencil.ST_KEEP):
+            return None
+        return fb.z_maxima()
 
     def _texturing(self, win):
         """(Texture, parameters) when texturing is on: a texture != 0 bound to
@@ -255,6 +275,8 @@ class VGX:
                         pattern=pat is not None, cmask=color and cmask_val != full,
                         texture=False, dual=color and len(targets) >= 2)
         zb = fb.ensure_z() if ztest else _DUMMY_Z
+        if key.zwrite:
+            fb.z_written()
         c0 = targets[0] if targets else _DUMMY_C
         c1 = targets[1] if len(targets) > 1 else _DUMMY_C
         planes = (c0, c1, zb, fb.stencil if stencil else _DUMMY_S,
@@ -473,6 +495,8 @@ class VGX:
             return
         m = win.st.zwritemask & 0xFFFFFF
         fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], ZMAX, m)
+        if m:
+            win.fb.z_written(r if m == 0xFFFFFF else None, ZMAX)
 
     def czclear(self, win, cval, zval):
         self._flush(win)
@@ -484,6 +508,7 @@ class VGX:
             fill(t, r[0], r[1], r[2], r[3], np.uint32(word), np.uint32(0xFFFFFFFF))
         z = min(max(int(zval), ZMIN), ZMAX)
         fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], z, 0xFFFFFF)
+        win.fb.z_written(r, z)
 
     @staticmethod
     def colour_word(st, colour):

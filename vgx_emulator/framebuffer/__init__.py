@@ -17,9 +17,12 @@ Colour words are packed ``0xAABBGGRR`` in RGB mode and hold the colour index
 in colour-map mode.  Row 0 is the bottom row of the window (IRIS GL's origin
 is the lower left), so ``plane[y, x]`` is window pixel (x, y).
 The z plane holds the signed 24-bit VGX value sign-extended in an int32
-(Decision 3).
+(Decision 3).  Its per-segment maxima (zmax.py) are an aid of the emulator,
+not a VGX bank: built from z only when a pass can use them.
 """
 import numpy as np
+
+from . import zmax
 
 ZMIN = -0x800000
 ZMAX = 0x7FFFFF
@@ -38,6 +41,8 @@ class Framebuffer:
         self.front = _plane(height, width, np.uint32)
         self.back = None
         self.z = None
+        self.zmax = None            # zmax.py: per-segment maxima of z
+        self.zmax_fresh = False     # zmax matches z (no z write since it was built)
         self.stencil = None
         self.stencil_planes = 0
         self.accum = None
@@ -58,6 +63,29 @@ class Framebuffer:
         if self.z is None:
             self.z = _plane(self.height, self.width, np.int32, ZMAX)
         return self.z
+
+    def z_maxima(self):
+        """The per-segment z maxima (zmax.py), rebuilt if z was written
+        since they were last built."""
+        z = self.ensure_z()
+        if self.zmax is None:
+            self.zmax = zmax.empty(self.height, self.width)
+        if not self.zmax_fresh:
+            zmax.build(z, self.zmax)
+            self.zmax_fresh = True
+        return self.zmax
+
+    def z_written(self, rect=None, value=None):
+        """A pass or clear writes the z bank: the maxima must be rebuilt
+        before their next use.  A clear of the whole bank to ``value``
+        (rect = x0, x1, y0, y1) sets them instead."""
+        whole = rect is not None and rect[0] == 0 and rect[2] == 0 and \
+            rect[1] == self.width - 1 and rect[3] == self.height - 1
+        if whole and self.zmax is not None:
+            self.zmax[:] = value
+            self.zmax_fresh = True
+        else:
+            self.zmax_fresh = False
 
     def swap(self):
         """swapbuffers(): exchange front and back."""

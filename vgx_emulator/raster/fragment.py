@@ -45,11 +45,13 @@ from . import stencil as _stencil
  P_CMASK, P_AFUNC, P_AREF, P_LOGICOP,
  P_PATSIZE, P_ORGX, P_ORGY,
  P_BS0, P_BS1, P_BS2, P_BS3, P_BS4, P_BS5,
- P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5) = range(41)
-NPARAMS = 41
+ P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5, P_ZMAX) = range(42)
+NPARAMS = 42
 # P_F*, P_P*, P_Z*: the stencil fail, pass and zpass ops as stencil.op_terms
 # P_BS*, P_BD*: the blend factors as blend.factor_terms (read by the generic
 # blend kernel only)
+# P_ZMAX: 1 when the triangle walker may skip spans against the z maxima
+# (framebuffer/zmax.py)
 
 
 @helper
@@ -63,7 +65,7 @@ def params(ip):
             i32(ip[15]), i32(ip[16]), i32(ip[17]), i32(ip[18]), i32(ip[19]), i32(ip[20]),
             i32(ip[21]), ip[22], ip[23], ip[24], ip[25], ip[26], ip[27], ip[28],
             ip[29], ip[30], ip[31], ip[32], ip[33], ip[34], ip[35], ip[36], ip[37], ip[38],
-            ip[39], ip[40])
+            ip[39], ip[40], ip[41])
 
 
 @helper

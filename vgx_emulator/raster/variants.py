@@ -29,6 +29,7 @@ def _source_hash():
         for f in sorted((_PKG / sub).glob("*.py")):
             h.update(f.read_bytes())
     h.update((_PKG / "config.py").read_bytes())
+    h.update((_PKG / "framebuffer" / "zmax.py").read_bytes())
     return h.hexdigest()[:16]
 
 

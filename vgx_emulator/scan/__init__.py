@@ -19,6 +19,7 @@ from .triangles import setup_triangles
 
 
 _NO_TC = np.zeros((1, 3))
+_NO_ZMAX = np.zeros((1, 1), np.int32)
 _NO_TEX = (np.zeros((1, 4), np.uint8), np.array([1, 0, 1, 1], np.int64),
            np.zeros(1, np.int64), np.zeros(7))
 
@@ -69,9 +70,11 @@ def threads_for(area):
         numba.set_num_threads(n)
 
 
-def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None):
+def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None):
     """Rasterize one WindowWork with the raster ``key`` and parameters ``ip``;
-    ``tex`` = (Texture, tparams) when texturing."""
+    ``tex`` = (Texture, tparams) when texturing; ``zmaxima``: the z bank's
+    per-segment maxima when ip[P_ZMAX] lets triangles skip spans against
+    them (framebuffer/zmax.py)."""
     if work.klass == FILLED:
         if work.tris is None or len(work.tris) == 0:
             return 0
@@ -86,7 +89,8 @@ def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None):
         area = int(((box[:, 1] - box[:, 0] + 1) * (box[:, 3] - box[:, 2] + 1))[valid].sum())
         with threads_for(area):
             _tris.triangle_kernel(key)(setup, work.X, work.Y, work.Z, work.C, work.CB,
-                                       work.prov, planes, ip, tc, tk)
+                                       work.prov, planes, ip, tc, tk,
+                                       _NO_ZMAX if zmaxima is None else zmaxima)
         return int(setup[5].sum())
     if work.klass == LINES:
         if len(work.seg0) == 0:

@@ -30,8 +30,10 @@ span (the span processor):
   pixel's z depends only on its triangle and position, never on the band,
   span or thread, so multipass algorithms that redraw the same triangles
   with ZF_EQUAL get the same z in every pass.  A sliver whose plane does
-  not fit the bounds of plane_fixed (steps of 2**14 z units a pixel and
-  more) evaluates each span start exactly instead.
+  not fit int64 over its box (plane_fixed) evaluates each span start
+  exactly instead.
+* spans that cannot pass the z test are skipped against the z bank's
+  per-segment maxima when that changes nothing (framebuffer/zmax.py).
 * Gouraud colours are the same planes with ``CFRAC`` bits; flat colour is
   one packed word per triangle (the provoking vertex).
 * textured triangles compute barycentric weights per pixel in float64
@@ -57,6 +59,7 @@ from ..jit import helper, njit
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.blend import key_terms
+from ..framebuffer.zmax import SEGMENT_SHIFT as ZSEG_SHIFT
 from ..raster.variants import KERNEL_SOURCE_HASH
 from .fixed import SHIFT, edge_coefficients, owns_edge
 
@@ -210,27 +213,25 @@ def to_fixed(v, frac):
     return np.int64(math.floor(f + 0.5))
 
 
-#: plane_fixed's bounds: a start value below 2**60 and steps below 2**44
-#: keep ``start + sy * dy + sx * dx`` inside int64 for |dx|, |dy| < 2**14
-#: (every pixel offset inside a scissored box)
-PLANE_START_LIMIT = float(1 << 60)
-PLANE_STEP_LIMIT = float(1 << 44)
+#: plane_fixed's bound: |start| + |sx| * width + |sy| * height of a
+#: triangle's box below 2**62 keeps every value of the plane in the box
+#: (``start + sy * dy + sx * dx`` and the DDA along a span) inside int64
+PLANE_LIMIT = float(1 << 62)
 
 
 @helper
-def plane_fixed(v0, dvb, dvc, wb, wc, dwb, dwc, dwby, dwcy, frac):
+def plane_fixed(v0, dvb, dvc, wb, wc, dwb, dwc, dwby, dwcy, frac, width, height):
     """A linear attribute ``v0 + dvb * wb + dvc * wc`` (wb, wc: barycentric
-    weights of vertices b and c at a reference pixel) in fixed point with
-    ``frac`` bits: (value at the reference, step per pixel in x, step per
-    row, ok).  ok is False when a value is out of the bounds above (a
-    degenerate sliver): the caller then evaluates each span start exactly."""
+    weights of vertices b and c at a reference pixel, the corner of a box of
+    width x height pixels) in fixed point with ``frac`` bits: (value at the
+    reference, step per pixel in x, step per row, ok).  ok is False when the
+    plane does not fit PLANE_LIMIT over the box (a degenerate sliver): the
+    caller then evaluates each span start exactly."""
     f = float(1 << frac)
     ref = (v0 + dvb * wb + dvc * wc) * f
     sx = (dvb * dwb + dvc * dwc) * f
     sy = (dvb * dwby + dvc * dwcy) * f
-    ok = abs(ref) < PLANE_START_LIMIT and abs(sx) < PLANE_STEP_LIMIT and \
-        abs(sy) < PLANE_STEP_LIMIT
-    if not ok:
+    if not (abs(ref) + abs(sx) * width + abs(sy) * height < PLANE_LIMIT):
         return np.int64(0), np.int64(0), np.int64(0), False
     return (np.int64(math.floor(ref + 0.5)), np.int64(math.floor(sx + 0.5)),
             np.int64(math.floor(sy + 0.5)), True)
@@ -254,7 +255,7 @@ def band_starts(sy0, sy1):
 _pool = None
 
 
-def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
+def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     """Run a compiled walker over every band: ``numba.get_num_threads()``
     contiguous shares of band_starts, one on this thread and the others on
     a thread pool (the walker releases the GIL).  Each band is drawn by one
@@ -265,14 +266,14 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
     bands = band_starts(int(ip[fragment.P_SY0]), int(ip[fragment.P_SY1]))
     n = min(numba.get_num_threads(), len(bands)) if config.PARALLEL else 1
     if n <= 1:
-        walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex)
+        walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
         return
     if _pool is None or _pool._max_workers < n - 1:
         _pool = ThreadPoolExecutor(max_workers=max(n - 1, 1), thread_name_prefix="vgx-band")
     shares = np.array_split(bands, n)
-    jobs = [_pool.submit(walk, share, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex)
+    jobs = [_pool.submit(walk, share, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
             for share in shares[1:]]
-    walk(shares[0], setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex)
+    walk(shares[0], setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
     for job in jobs:
         job.result()
 
@@ -288,7 +289,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     cmax = 0xFFF if cmode else 255
 
     @njit
-    def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex):
+    def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
         """Rows of every triangle in the bands starting at rows ``bands``
         (run_bands), in submission order."""
         edges, verts, box, inv_area, back, valid = setup
@@ -303,6 +304,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         zlo = prm[fragment.P_ZLO]
         zhi = prm[fragment.P_ZHI]
         sy1 = prm[fragment.P_SY1]
+        skip = ztest and prm[fragment.P_ZMAX] != 0
         for ylo in bands:
             yhi = min(ylo + band_rows - 1, sy1)
             for i in range(valid.shape[0]):
@@ -344,8 +346,10 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 za = Z[a]
                 zba = Z[b] - za
                 zca = Z[c] - za
+                bw = box[i, 1] - xb + 1
+                bh = box[i, 3] - yb + 1
                 zref, dz, dzy, zok = plane_fixed(za, zba, zca, wbr, wcr, dwb, dwc,
-                                                 dwby, dwcy, ZFRAC)
+                                                 dwby, dwcy, ZFRAC, bw, bh)
                 if not zok:
                     dz = to_fixed(zba * dwb + zca * dwc, ZFRAC)
                 # flat colour: the provoking vertex
@@ -362,13 +366,13 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     ba = cols[a, 2]
                     aa = cols[a, 3]
                     rref, dr, dry, rok = plane_fixed(ra, cols[b, 0] - ra, cols[c, 0] - ra,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
                     gref, dg, dgy, gok = plane_fixed(ga, cols[b, 1] - ga, cols[c, 1] - ga,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
                     bref, db, dby, bok = plane_fixed(ba, cols[b, 2] - ba, cols[c, 2] - ba,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
                     aref, da, day, aok = plane_fixed(aa, cols[b, 3] - aa, cols[c, 3] - aa,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
                     cok = rok and gok and bok and aok
                     if not cok:
                         dr = to_fixed((cols[b, 0] - ra) * dwb + (cols[c, 0] - ra) * dwc, CFRAC)
@@ -447,6 +451,16 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                                           + (cols[c, 3] - cols[a, 3]) * wc, CFRAC)
                     # the DDAs start half a unit up so that >> rounds to nearest
                     zf = z0 + zhalf
+                    if skip and zok:
+                        # quantized z is monotonic along the span: its least
+                        # value is at one end (zok: dz is bounded, no overflow)
+                        zq_least = min(max(min(zf, zf + dz * (xr - xl)) >> ZFRAC, zlo), zhi)
+                        zrow = zmax[y]
+                        most = zrow[xl >> ZSEG_SHIFT]
+                        for seg in range((xl >> ZSEG_SHIFT) + 1, (xr >> ZSEG_SHIFT) + 1):
+                            most = max(most, zrow[seg])
+                        if zq_least > most:
+                            continue
                     # colours step in int32 (CFRAC = 16 keeps 0xFFF << 16 inside
                     # it; numba widens int32 operations, hence the casts)
                     r32 = np.int32(cr + chalf)

@@ -1,0 +1,127 @@
+"""Span skipping against the z bank's per-segment maxima (framebuffer/zmax.py).
+
+The skip is an optimisation that must never change a pixel: every scene
+here is drawn twice, with the maxima and with them switched off
+(machine._z_maxima returning None), and the colour, z and stencil banks
+must be identical.  The passes mix the cases that decide whether maxima
+may be used and whether they must be rebuilt: z writes that raise z
+(ZF_GREATER, ZF_ALWAYS), partial zwritemasks, partial and whole clears,
+stencil ops on z-fail, ZF_EQUAL redraws.  A last test feeds maxima that
+are too low on purpose, to show that the walker does read them.
+"""
+import numpy as np
+import pytest
+
+from irisgl import (FALSE, GD_ZMAX, GOURAUD, ST_INCR, ST_KEEP, SF_ALWAYS, SF_EQUAL, TRUE,
+                    ZF_ALWAYS, ZF_EQUAL, ZF_GREATER, ZF_LEQUAL, ZF_LESS, bgnpolygon, c4i,
+                    czclear, endpolygon, getgdesc, ortho, sclear, scrmask, shademodel,
+                    stencil, stensize, subpixel, v3f, viewport, wmpack, zbuffer, zclear,
+                    zfunction, zwritemask, gconfig)
+
+from banks import colour, stencil_bank, z_bank
+
+W, H = 96, 64
+
+
+def _tris(rnd, n):
+    """n random triangles: vertices (x, y, zn) with colours."""
+    for _ in range(n):
+        bgnpolygon()
+        for _ in range(3):
+            c4i((int(rnd.integers(0, 256)), int(rnd.integers(0, 256)),
+                 int(rnd.integers(0, 256)), 255))
+            v3f((float(rnd.uniform(-10, W + 10)), float(rnd.uniform(-10, H + 10)),
+                 float(rnd.uniform(-0.9, 0.9))))
+        endpolygon()
+
+
+def _scene(open_window, seed):
+    """Passes whose z-failing fragments change nothing (maxima used) between
+    passes that write z in every way (maxima rebuilt or not used)."""
+    open_window(W, H)
+    stensize(8)
+    gconfig()
+    ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
+    subpixel(TRUE)
+    shademodel(GOURAUD)
+    zbuffer(TRUE)
+    rnd = np.random.default_rng(seed)
+    czclear(0, getgdesc(GD_ZMAX))
+    sclear(0)
+    _tris(rnd, 12)                           # LEQUAL, z written: maxima stale
+    zfunction(ZF_LESS)
+    _tris(rnd, 12)                           # rebuilt, then stale again
+    zfunction(ZF_GREATER)
+    _tris(rnd, 6)                            # raises z: maxima not used
+    zfunction(ZF_LEQUAL)
+    _tris(rnd, 8)                            # rebuilt after the raise
+    zwritemask(0x00FF00)
+    _tris(rnd, 4)                            # partial z write: not used
+    zwritemask(0xFFFFFF)
+    _tris(rnd, 6)
+    scrmask(10, 60, 5, 40)
+    zclear()                                 # partial clear: stale
+    scrmask(0, W - 1, 0, H - 1)
+    _tris(rnd, 8)
+    stencil(TRUE, 0, SF_ALWAYS, 0xFF, ST_KEEP, ST_KEEP, ST_INCR)
+    zwritemask(0)
+    wmpack(0)
+    _tris(rnd, 10)                           # z-pass counting: maxima used
+    stencil(TRUE, 0, SF_ALWAYS, 0xFF, ST_KEEP, ST_INCR, ST_KEEP)
+    _tris(rnd, 10)                           # z-fail counting: not used
+    stencil(TRUE, 1, SF_EQUAL, 0xFF, ST_KEEP, ST_KEEP, ST_KEEP)
+    zwritemask(0xFFFFFF)
+    wmpack(0xFFFFFFFF)
+    zfunction(ZF_EQUAL)
+    rnd = np.random.default_rng(seed)        # the first triangles again, ZF_EQUAL
+    _tris(rnd, 12)
+    stencil(FALSE, 0, SF_ALWAYS, 0, ST_KEEP, ST_KEEP, ST_KEEP)
+    zfunction(ZF_ALWAYS)
+    _tris(rnd, 3)                            # any z: not used, stale
+    zfunction(ZF_LEQUAL)
+    viewport(0, W // 2, 0, H - 1)
+    _tris(rnd, 8)
+    return colour(), z_bank(), stencil_bank()
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_skipping_spans_changes_no_bank(open_window, vgx, monkeypatch, seed):
+    with_maxima = _scene(open_window, seed)
+    vgx.reset()
+    monkeypatch.setattr(type(vgx), "_z_maxima", lambda self, win: None)
+    without = _scene(open_window, seed)
+    for a, b in zip(with_maxima, without):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_whole_clear_sets_the_maxima(open_window, vgx):
+    """czclear of the whole window leaves the maxima fresh at the cleared
+    value (no rebuild); a partial one marks them for a rebuild."""
+    open_window(W, H)
+    zbuffer(TRUE)
+    fb = vgx.current.fb
+    fb.z_maxima()
+    czclear(0, 1000)
+    assert fb.zmax_fresh and (fb.zmax == 1000).all()
+    scrmask(0, 20, 0, 20)
+    czclear(0, 5)
+    assert not fb.zmax_fresh
+    assert fb.z_maxima()[0, 0] == 5 and fb.z_maxima()[0, 2] == 1000
+
+
+def test_walker_reads_the_maxima(open_window, vgx, monkeypatch):
+    """Maxima below every stored z (wrong on purpose) make an eligible pass
+    skip every span, and an ineligible one (ZF_ALWAYS) ignore them."""
+    open_window(W, H)
+    ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
+    zbuffer(TRUE)
+    czclear(0, getgdesc(GD_ZMAX))
+    fb = vgx.current.fb
+    low = np.full_like(fb.z_maxima(), -0x800000)
+    monkeypatch.setattr(type(fb), "z_maxima", lambda self: low)
+    rnd = np.random.default_rng(5)
+    _tris(rnd, 5)
+    assert (colour() == 0).all()
+    zfunction(ZF_ALWAYS)
+    _tris(rnd, 5)
+    assert (colour() != 0).any()
