@@ -262,7 +262,11 @@ class VGX:
         full = 0xFFFFFFFF if st.rgb else 0xFFF
         cmask_val = st.cmask & full
         color = len(targets) > 0 and cmask_val != 0
-        stencil = st.stencil_on and fb.stencil is not None
+        stencil = 0
+        if st.stencil_on and fb.stencil is not None:
+            # 1: the bank is only read (every op ST_KEEP, or swritemask 0)
+            keep = all(op == _stencil.ST_KEEP for op in st.stencil[3:6])
+            stencil = 1 if keep or st.swritemask & ((1 << fb.stencil_planes) - 1) == 0 else 2
         pat = self.patterns.get(st.pattern) if filled and st.pattern else None
         logic = color and st.logicop != 3
         key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=color,

@@ -37,6 +37,8 @@ KERNEL_SOURCE_HASH = _source_hash()
 
 #: Fields of the raster key, in kernel-factory argument order.
 #: ``blend``: 0, or blend.key_code(sfactr, dfactr): a folded pair, or GENERIC.
+#: ``stencil``: 0 off, 1 tested only (every op ST_KEEP or swritemask 0: the
+#: triangle walker then never stores the bank), 2 tested and written.
 #: ``dual``: drawing goes to two colour buffers (frontbuffer and backbuffer
 #: both enabled), so that the common one-buffer loop has no per-pixel test.
 RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside "

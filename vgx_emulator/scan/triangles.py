@@ -521,7 +521,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         ok, zn, sn, n0, n1 = fragment.stages(
                             ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
                             patbit, zq, zold, sold, c0, c1, w, bt, prm)
-                        if stencil:
+                        if stencil == 2:        # (1: the stencil is only tested)
                             sr[u] = sn
                         if zwrite:
                             zr[u] = zn
