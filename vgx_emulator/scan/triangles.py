@@ -305,6 +305,10 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         zhi = prm[fragment.P_ZHI]
         sy1 = prm[fragment.P_SY1]
         skip = ztest and prm[fragment.P_ZMAX] != 0
+        cr0_dummy = cb0[0]
+        cr1_dummy = cb1[0]
+        zr_dummy = zb[0]
+        sr_dummy = sb[0]
         for ylo in bands:
             yhi = min(ylo + band_rows - 1, sy1)
             for i in range(valid.shape[0]):
@@ -413,10 +417,12 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     q2, m2 = edge_step(q2, m2, D2, sq2, sm2)
                     if xl > xr:
                         continue
-                    cr0 = cb0[min(y, cb0.shape[0] - 1)]
-                    cr1 = cb1[min(y, cb1.shape[0] - 1)]
-                    zr = zb[min(y, zb.shape[0] - 1)]
-                    sr = sb[min(y, sb.shape[0] - 1)]
+                    # row views of the banks the variant uses (the others are
+                    # 1 x 1 dummies, viewed once per call)
+                    cr0 = cb0[y] if color else cr0_dummy
+                    cr1 = cb1[y] if (color and dual) else cr1_dummy
+                    zr = zb[y] if ztest else zr_dummy
+                    sr = sb[y] if stencil else sr_dummy
                     px = xl << SHIFT
                     # exact edge values at the span's first pixel
                     e0 = A0 * px + r0
