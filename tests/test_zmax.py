@@ -125,3 +125,15 @@ def test_walker_reads_the_maxima(open_window, vgx, monkeypatch):
     zfunction(ZF_ALWAYS)
     _tris(rnd, 5)
     assert (colour() != 0).any()
+
+
+@pytest.mark.parametrize("width", [1, 5, 16, 37, 1280])
+def test_build_takes_the_maximum_of_every_segment(width):
+    from vgx_emulator.framebuffer import zmax
+    rnd = np.random.default_rng(width)
+    z = rnd.integers(-0x800000, 0x800000, (7, width)).astype(np.int32)
+    out = zmax.empty(7, width)
+    zmax.build(z, out)
+    for y in range(7):
+        for s in range(out.shape[1]):
+            assert out[y, s] == z[y, s * zmax.SEGMENT:(s + 1) * zmax.SEGMENT].max()
