@@ -139,13 +139,14 @@ def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
         spass = depth.compare(prm[P_SFUNC], np.int32(prm[P_SREF] & m), np.int32(sold & m))
         # Decision 1: without a z-buffer a passing fragment takes the pass op
         zp = ztest and zpass
-        tx = prm[P_ZX] if zp else prm[P_PX]
-        tk = prm[P_ZK] if zp else prm[P_PK]
-        ta = prm[P_ZA] if zp else prm[P_PA]
-        tx = tx if spass else prm[P_FX]
-        tk = tk if spass else prm[P_FK]
-        ta = ta if spass else prm[P_FA]
-        snew = _stencil.apply(tx, tk, ta, sold, prm[P_SMAX], prm[P_SWMASK])
+        # the three ops' results, then one selection of int32 values (a
+        # selection of their terms widened the vector lanes to 64 bits)
+        smax = prm[P_SMAX]
+        wm = prm[P_SWMASK]
+        s_zpass = _stencil.apply(prm[P_ZX], prm[P_ZK], prm[P_ZA], sold, smax, wm)
+        s_zfail = _stencil.apply(prm[P_PX], prm[P_PK], prm[P_PA], sold, smax, wm)
+        s_fail = _stencil.apply(prm[P_FX], prm[P_FK], prm[P_FA], sold, smax, wm)
+        snew = (s_zpass if zp else s_zfail) if spass else s_fail
         snew = snew if ok else sold
         ok = ok & spass
     ok = ok & zpass
