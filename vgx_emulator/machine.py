@@ -181,7 +181,8 @@ class VGX:
             key, planes, ip = self._raster_setup(win, work, work.klass == FILLED)
             ip[fragment.P_ZMAX] = zmaxima is not None
             key = key._replace(texture=tex is not None)
-            if key.gouraud and work.klass == FILLED and tex is None and work.constant_colour():
+            if key.gouraud and (not key.color or (work.klass == FILLED and tex is None
+                                                  and work.constant_colour())):
                 key = key._replace(gouraud=False)   # same pixels, no interpolation
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)

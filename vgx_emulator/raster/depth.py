@@ -8,6 +8,8 @@ holds signed 24-bit values sign-extended in int32 (Decision 3).
 """
 import math
 
+import numpy as np
+
 from ..jit import helper
 
 ZF_NEVER, ZF_LESS, ZF_EQUAL, ZF_LEQUAL, ZF_GREATER, ZF_NOTEQUAL, ZF_GEQUAL, ZF_ALWAYS = range(8)
@@ -38,5 +40,7 @@ def quantize(z, zlo, zhi):
 @helper
 def masked_write(stored, value, mask):
     """zwritemask: keep stored bits where mask is 0; result sign-extended 24-bit."""
-    v = ((stored & ~mask) | (value & mask)) & 0xFFFFFF
-    return (v ^ 0x800000) - 0x800000
+    i32 = np.int32     # numba widens int32 operations to int64: narrow each step
+    m = i32(mask)
+    v = i32(i32(i32(stored & ~m) | i32(value & m)) & i32(0xFFFFFF))
+    return i32(i32(v ^ i32(0x800000)) - i32(0x800000))
