@@ -48,6 +48,7 @@ stores the row views around it, so the span loop of the common variants
 code.
 """
 import functools
+import itertools
 import math
 from concurrent.futures import ThreadPoolExecutor
 
@@ -254,14 +255,20 @@ def band_starts(sy0, sy1):
 
 _pool = None
 
+#: shares of the band list per thread: a thread takes the next share when it
+#: finishes one, so one whose bands hold less work takes more of them
+SHARES_PER_THREAD = 4
+
 
 def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
-    """Run a compiled walker over every band: ``numba.get_num_threads()``
-    contiguous shares of band_starts, one on this thread and the others on
-    a thread pool (the walker releases the GIL).  Each band is drawn by one
+    """Run a compiled walker over every band: the band_starts list cut into
+    SHARES_PER_THREAD shares per thread, which ``numba.get_num_threads()``
+    threads (this one and the others of a thread pool; the walker releases
+    the GIL) take in turn until none is left.  Each band is drawn by one
     thread in submission order, so the pixels do not depend on the number
-    of threads.  Python threads rather than a numba ``prange``: numba's
-    parallel lowering doubled the walker's compile time (cold start)."""
+    of threads or on which thread took which share.  Python threads rather
+    than a numba ``prange``: numba's parallel lowering doubled the walker's
+    compile time (cold start)."""
     global _pool
     bands = band_starts(int(ip[fragment.P_SY0]), int(ip[fragment.P_SY1]))
     n = min(numba.get_num_threads(), len(bands)) if config.PARALLEL else 1
@@ -270,10 +277,17 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
         return
     if _pool is None or _pool._max_workers < n - 1:
         _pool = ThreadPoolExecutor(max_workers=max(n - 1, 1), thread_name_prefix="vgx-band")
-    shares = np.array_split(bands, n)
-    jobs = [_pool.submit(walk, share, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
-            for share in shares[1:]]
-    walk(shares[0], setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
+    shares = np.array_split(bands, min(n * SHARES_PER_THREAD, len(bands)))
+    taken = itertools.count()       # next() is atomic under the GIL
+
+    def worker():
+        k = next(taken)
+        while k < len(shares):
+            walk(shares[k], setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
+            k = next(taken)
+
+    jobs = [_pool.submit(worker) for _ in range(n - 1)]
+    worker()
     for job in jobs:
         job.result()
 
