@@ -207,6 +207,8 @@ class VGX:
         if st.stencil_on and fb.stencil is not None and \
                 (st.stencil[3] != _stencil.ST_KEEP or st.stencil[4] != _stencil.ST_KEEP):
             return None
+        if fb.zmax_uniform is not None and fb.zmax_uniform >= max(st.depth_range):
+            return None         # just cleared to the far end: no span can fail
         return fb.z_maxima()
 
     def _texturing(self, win):

@@ -43,6 +43,7 @@ class Framebuffer:
         self.z = None
         self.zmax = None            # zmax.py: per-segment maxima of z
         self.zmax_fresh = False     # zmax matches z (no z write since it was built)
+        self.zmax_uniform = None    # the value of every maximum after a whole clear
         self.stencil = None
         self.stencil_planes = 0
         self.accum = None
@@ -73,6 +74,7 @@ class Framebuffer:
         if not self.zmax_fresh:
             zmax.build(z, self.zmax)
             self.zmax_fresh = True
+            self.zmax_uniform = None
         return self.zmax
 
     def z_written(self, rect=None, value=None):
@@ -81,6 +83,7 @@ class Framebuffer:
         (rect = x0, x1, y0, y1) sets them instead."""
         whole = rect is not None and rect[0] == 0 and rect[2] == 0 and \
             rect[1] == self.width - 1 and rect[3] == self.height - 1
+        self.zmax_uniform = value if whole else None
         if whole and self.zmax is not None:
             self.zmax[:] = value
             self.zmax_fresh = True
