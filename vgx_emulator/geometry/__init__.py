@@ -50,6 +50,9 @@ class WindowWork:
         colour: Gouraud shading then draws what FLAT draws."""
         if self.tris is None or len(self.tris) == 0 or self.C is None:
             return False
+        head = self.C[self.tris[:8].ravel()]    # most batches differ at once
+        if not (head == head[0]).all():
+            return False
         used = self.C[self.tris.ravel()]
         same = bool((used == used[0]).all())
         if same and self.CB is not self.C:
