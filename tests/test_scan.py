@@ -903,3 +903,20 @@ def test_flat_line_segments_take_their_last_vertex_colour():
     for k in range(3):
         seg = ref.line_pixels(pts[k], pts[k + 1], closed=False)
         assert {_colour(img, p) for p in seg} == {cols[k + 1]}, k
+
+
+def test_constant_colour_looks_only_at_used_vertices_front_and_back():
+    """WindowWork.constant_colour (Gouraud over one colour runs the flat
+    variant): every vertex a triangle uses, front and back colours; an
+    unused vertex (a clipped original) does not count."""
+    from vgx_emulator.geometry import WindowWork
+    c = np.tile([10.0, 20.0, 30.0, 255.0], (5, 1))
+    c[4] = (0.0, 0.0, 0.0, 0.0)                       # not used
+    w = WindowWork(klass=0, C=c, CB=c, tris=np.array([[0, 1, 2], [0, 2, 3]]))
+    assert w.constant_colour()
+    c2 = c.copy()
+    c2[3, 1] = 21.0
+    assert not WindowWork(klass=0, C=c2, CB=c2, tris=w.tris).constant_colour()
+    back = c.copy()
+    back[2, 3] = 0.0
+    assert not WindowWork(klass=0, C=c, CB=back, tris=w.tris).constant_colour()

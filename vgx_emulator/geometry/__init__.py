@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import warn
+from ..jit import njit
 from . import assemble, clip, lighting, viewport
 from .assemble import CLOSEDLINE, POLYGON, QSTRIP, TMESH
 from .batch import FILLED, LAST_WAS_NORMAL, LINES
@@ -50,15 +51,22 @@ class WindowWork:
         colour: Gouraud shading then draws what FLAT draws."""
         if self.tris is None or len(self.tris) == 0 or self.C is None:
             return False
-        head = self.C[self.tris[:8].ravel()]    # most batches differ at once
-        if not (head == head[0]).all():
-            return False
-        used = self.C[self.tris.ravel()]
-        same = bool((used == used[0]).all())
-        if same and self.CB is not self.C:
-            back = self.CB[self.tris.ravel()]
-            same = bool((back == back[0]).all())
-        return same
+        return _same_rows(self.C, self.tris) and \
+            (self.CB is self.C or _same_rows(self.CB, self.tris))
+
+
+@njit
+def _same_rows(C, tris):
+    """Whether every row of C that the triangles use equals the first one
+    (a loop that stops at the first difference)."""
+    first = C[tris[0, 0]]
+    for i in range(tris.shape[0]):
+        for k in range(3):
+            row = C[tris[i, k]]
+            for j in range(C.shape[1]):
+                if row[j] != first[j]:
+                    return False
+    return True
 
 
 def lighting_active(st, defs):
