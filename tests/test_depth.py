@@ -367,22 +367,11 @@ def test_lrectread_z_sub_rectangle_rows_from_the_bottom():
 # --------------------------------------------------------------------------
 # interpolation and hidden surfaces
 
-def test_z_interpolated_linearly_in_screen_space():
-    _window()
-    subpixel(TRUE)
-    lsetdepth(-1000000, 1000000)
-    zbuffer(TRUE)
-    zfunction(ZF_ALWAYS)
-    vs = [(1.25, 2.5, -0.9), (30.75, 6.0, 0.7), (11.5, 30.25, 0.1)]   # (x, y, zn)
-    cpack(RED)
-    bgnpolygon()
-    for x, y, zn in vs:
-        v3f((x, y, -zn))
-    endpolygon()
-    z = _z()
-    placed = ref.place([(x, y) for x, y, _ in vs])
+def _assert_z_exact(z, placed, vz):
+    """Every pixel of the placed triangle holds its exact screen-linear z
+    (vertex values vz) rounded to nearest, with 1/100 of slack for the
+    fixed-point planes; every other pixel still holds GD_ZMAX."""
     pix = ref.triangle_pixels(*placed, W, H)
-    vz = [Fraction(0) + Fraction(zn) * 1000000 for _, _, zn in vs]
     for x in range(W):
         for y in range(H):
             if (x, y) in pix:
@@ -391,6 +380,30 @@ def test_z_interpolated_linearly_in_screen_space():
                 assert abs(int(z[y, x]) - exact) <= Fraction(1, 2) + Fraction(1, 100), (x, y)
             else:
                 assert z[y, x] == ZMAX
+
+
+def _draw_exact_triangle(vs):
+    """One triangle of (x, y, zn) vertices with sub-pixel positions, the
+    range lsetdepth(-1000000, 1000000) and ZF_ALWAYS.  Returns the z bank,
+    the placed vertices and the exact vertex z values."""
+    _window()
+    subpixel(TRUE)
+    lsetdepth(-1000000, 1000000)
+    zbuffer(TRUE)
+    zfunction(ZF_ALWAYS)
+    cpack(RED)
+    bgnpolygon()
+    for x, y, zn in vs:
+        v3f((x, y, -zn))
+    endpolygon()
+    placed = ref.place([(x, y) for x, y, _ in vs])
+    return _z(), placed, [Fraction(zn) * 1000000 for _, _, zn in vs]
+
+
+def test_z_interpolated_linearly_in_screen_space():
+    z, placed, vz = _draw_exact_triangle([(1.25, 2.5, -0.9), (30.75, 6.0, 0.7),
+                                          (11.5, 30.25, 0.1)])
+    _assert_z_exact(z, placed, vz)
 
 
 def test_sliver_z_exact_where_the_z_plane_overflows():
@@ -399,35 +412,15 @@ def test_sliver_z_exact_where_the_z_plane_overflows():
     the needle's 30 x 30 pixel box does not fit 2**62 (checked here from
     the plane equation), so each span start is evaluated from the exact edge
     values (scan.triangles.plane_fixed).  z stays exact at every pixel."""
-    _window()
-    subpixel(TRUE)
-    lsetdepth(-1000000, 1000000)
-    zbuffer(TRUE)
-    zfunction(ZF_ALWAYS)
-    vs = [(1.0, 1.0, -0.5), (30.0, 30.0, 0.5), (30.0 + 1 / 256, 30.0, 0.9)]
-    cpack(RED)
-    bgnpolygon()
-    for x, y, zn in vs:
-        v3f((x, y, -zn))
-    endpolygon()
-    z = _z()
-    placed = ref.place([(x, y) for x, y, _ in vs])
-    vz = [Fraction(zn) * 1000000 for _, _, zn in vs]
+    z, placed, vz = _draw_exact_triangle([(1.0, 1.0, -0.5), (30.0, 30.0, 0.5),
+                                          (30.0 + 1 / 256, 30.0, 0.9)])
     (x0, y0), (x1, y1), (x2, y2) = placed
     det = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0)
     gx = ((vz[1] - vz[0]) * (y2 - y0) - (vz[2] - vz[0]) * (y1 - y0)) / det
     gy = ((vz[2] - vz[0]) * (x1 - x0) - (vz[1] - vz[0]) * (x2 - x0)) / det
     assert (abs(gx) * 30 + abs(gy) * 30) * 2 ** 30 > 2 ** 62      # the premise
-    pix = ref.triangle_pixels(*placed, W, H)
-    assert len(pix) >= 20
-    for x in range(W):
-        for y in range(H):
-            if (x, y) in pix:
-                wts = ref.barycentric(*placed, x, y)
-                exact = sum(wt * zz for wt, zz in zip(wts, vz))
-                assert abs(int(z[y, x]) - exact) <= Fraction(1, 2) + Fraction(1, 100), (x, y)
-            else:
-                assert z[y, x] == ZMAX
+    assert len(ref.triangle_pixels(*placed, W, H)) >= 20
+    _assert_z_exact(z, placed, vz)
 
 
 def test_hidden_surface_independent_of_order():

@@ -485,10 +485,18 @@ def test_tmesh_registers_with_a_swap_in_the_middle():
     pointer selects R0 again ... computed by the register model."""
     _window()
     subpixel(TRUE)
-    pts = [(3, 3), (3, 28), (14, 4), (16, 26), (28, 10), (29, 29)]
-    events = [0, 1, 2, "swap", 3, 4, 5]
-    tris = ref.tmesh_triangles(events)
-    sets = [ref.triangle_pixels(*[pts[i] for i in t], W, H) for t in tris]
+    _check_tmesh_counts(_MESH_POINTS, [0, 1, 2, "swap", 3, 4, 5])
+
+
+_MESH_POINTS = [(3, 3), (3, 28), (14, 4), (16, 26), (28, 10), (29, 29)]
+
+
+def _check_tmesh_counts(pts, events):
+    """Draw one tmesh of ``events`` (vertex indices into pts, or "swap")
+    additively and compare each pixel's count with the register model's
+    triangles."""
+    sets = [ref.triangle_pixels(*[pts[i] for i in t], W, H)
+            for t in ref.tmesh_triangles(events)]
     _blank()
     blendfunction(BF_ONE, BF_ONE)
     cpack(1)
@@ -500,6 +508,7 @@ def test_tmesh_registers_with_a_swap_in_the_middle():
             v2f(pts[e])
     endtmesh()
     np.testing.assert_array_equal((_read() & 0xFF).astype(int), _count_array(sets))
+    blendfunction(BF_ONE, BF_ZERO)
 
 
 def test_same_tmesh_table_with_and_without_a_swap_in_turn():
@@ -509,22 +518,8 @@ def test_same_tmesh_table_with_and_without_a_swap_in_turn():
     every time (the register model computes each)."""
     _window()
     subpixel(TRUE)
-    pts = [(3, 3), (3, 28), (14, 4), (16, 26), (28, 10), (29, 29)]
     for events in ([0, 1, 2, 3, 4, 5], [0, 1, 2, "swap", 3, 4, 5]) * 2:
-        sets = [ref.triangle_pixels(*[pts[i] for i in t], W, H)
-                for t in ref.tmesh_triangles(events)]
-        _blank()
-        blendfunction(BF_ONE, BF_ONE)
-        cpack(1)
-        bgntmesh()
-        for e in events:
-            if e == "swap":
-                swaptmesh()
-            else:
-                v2f(pts[e])
-        endtmesh()
-        np.testing.assert_array_equal((_read() & 0xFF).astype(int), _count_array(sets))
-        blendfunction(BF_ONE, BF_ZERO)
+        _check_tmesh_counts(_MESH_POINTS, events)
 
 
 def test_trailing_swaptmesh_does_not_leak_into_the_next_tmesh():
