@@ -290,8 +290,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         # only vertices that a kept triangle uses are converted: an original
         # vertex replaced by clipping may lie at w <= 0 or far outside the band
         work.X, work.Y, work.Z, ok, lost = viewport.window_fixed(
-            clp, work.tris, tuple(int(x) for x in viewport_rect),
-            (float(near_far[0]), float(near_far[1])), bool(snap))
+            clp, work.tris, viewport_rect, near_far, snap)
         if lost.any():
             # a kept triangle with a vertex the divide cannot place: the clip
             # vertex (0, 0, 0, 0) (v4f of zeros, a vertex at the light of a
@@ -335,7 +334,6 @@ def _window_rows(rows, vp, near_far, snap):
     """Clip-space rows (x, y, z, w, r, g, b, a) -> window rows (x, y, z, r, g, b, a)."""
     out = np.empty((len(rows), 7))
     if len(rows):
-        with np.errstate(all="ignore"):
-            out[:, 0], out[:, 1], out[:, 2] = viewport.to_window(rows[:, :4], vp, near_far, snap)
+        out[:, 0], out[:, 1], out[:, 2] = viewport.to_window(rows[:, :4], vp, near_far, snap)
         out[:, 3:7] = rows[:, 4:8]
     return out
