@@ -22,8 +22,8 @@ GUARD_BAND_PIXELS = 8192
 BAND_ROWS = 32
 
 #: Batches whose triangle boxes cover fewer pixels than this run on one
-#: thread (scan.threads_for): below it a parallel region costs more than it
-#: saves, and on a busy machine much more.
+#: thread (scan.triangles.run_bands): below it waking the other threads
+#: costs more than it saves, and on a busy machine much more.
 PARALLEL_MIN_PIXELS = 1 << 18
 
 #: numba flags.  fastmath stays off: the NaN/inf guards and exact integer

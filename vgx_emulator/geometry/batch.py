@@ -6,9 +6,10 @@ normal, colour or matrix call changed something since the last vertex, so a
 vertex costs two list appends.  Display-list replay appends whole numpy
 blocks of vertices and records instead (``add_vertices``/``add_records``);
 the immediate lists hold what came after the last block, and indices
-(``akey`` values, primitive starts, swaps) are global over blocks + lists.  Primitives are (kind, start, count, seq,
-flags) records.  A batch holds one class of primitive (filled, line or point)
-so that drawing order between classes is kept by flushing on a change.
+(``akey`` values, primitive starts, swaps) are global over blocks + lists.
+Primitives are (kind, start, count, seq, flags) records.  A batch holds one
+class of primitive (filled, line or point) so that drawing order between
+classes is kept by flushing on a change.
 """
 import numpy as np
 

@@ -5,12 +5,7 @@
 walker; lines and points have their own walkers.  All pixel work happens in
 the numba kernels; this module only prepares arrays.
 """
-from contextlib import contextmanager
-
-import numba
 import numpy as np
-
-from .. import config
 
 from ..geometry.batch import FILLED, LINES
 from . import lines as _lines
@@ -51,25 +46,6 @@ def texture_inputs(work, texture, tparams):
     return (texture.texels, texture.info, tsel, tparams)
 
 
-@contextmanager
-def threads_for(area):
-    """Run a batch whose triangles' boxes cover fewer than
-    config.PARALLEL_MIN_PIXELS pixels on one thread: a parallel region costs
-    a wake-up of every thread, and when another process holds the other
-    core the region waits for it (measured: Heidmann's 36 small lit-pass
-    batches took 246 ms on two threads on a busy machine, 45 ms on one).
-    Which thread draws a band never changes a pixel."""
-    n = numba.get_num_threads()
-    if area >= config.PARALLEL_MIN_PIXELS or n == 1:
-        yield
-        return
-    numba.set_num_threads(1)
-    try:
-        yield
-    finally:
-        numba.set_num_threads(n)
-
-
 def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None):
     """Rasterize one WindowWork with the raster ``key`` and parameters ``ip``;
     ``tex`` = (Texture, tparams) when texturing; ``zmaxima``: the z bank's
@@ -85,12 +61,9 @@ def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None
             tc = work.TC
         else:
             tk, tc = _NO_TEX, _NO_TC
-        box, valid = setup[2], setup[5]
-        area = int(((box[:, 1] - box[:, 0] + 1) * (box[:, 3] - box[:, 2] + 1))[valid].sum())
-        with threads_for(area):
-            _tris.triangle_kernel(key)(setup, work.X, work.Y, work.Z, work.C, work.CB,
-                                       work.prov, planes, ip, tc, tk,
-                                       _NO_ZMAX if zmaxima is None else zmaxima)
+        _tris.triangle_kernel(key)(setup, work.X, work.Y, work.Z, work.C, work.CB,
+                                   work.prov, planes, ip, tc, tk,
+                                   _NO_ZMAX if zmaxima is None else zmaxima)
         return int(setup[5].sum())
     if work.klass == LINES:
         if len(work.seg0) == 0:

@@ -264,7 +264,8 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     """Run a compiled walker over every band: the band_starts list cut into
     SHARES_PER_THREAD shares per thread, which ``numba.get_num_threads()``
     threads (this one and the others of a thread pool; the walker releases
-    the GIL) take in turn until none is left.  Each band is drawn by one
+    the GIL) take in turn until none is left; small batches run on this
+    thread alone.  Each band is drawn by one
     thread in submission order, so the pixels do not depend on the number
     of threads or on which thread took which share.  Python threads rather
     than a numba ``prange``: numba's parallel lowering doubled the walker's
@@ -272,6 +273,16 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     global _pool
     bands = band_starts(int(ip[fragment.P_SY0]), int(ip[fragment.P_SY1]))
     n = min(numba.get_num_threads(), len(bands)) if config.PARALLEL else 1
+    if n > 1:
+        # a batch whose triangle boxes cover fewer than PARALLEL_MIN_PIXELS
+        # pixels runs on this thread alone: waking the others costs more
+        # than they save, and when another process holds the other core
+        # the batch waits for it (measured: Heidmann's 36 small lit-pass
+        # batches took 246 ms on two threads on a busy machine, 45 ms on one)
+        box, valid = setup[2], setup[5]
+        area = ((box[:, 1] - box[:, 0] + 1) * (box[:, 3] - box[:, 2] + 1))[valid].sum()
+        if area < config.PARALLEL_MIN_PIXELS:
+            n = 1
     if n <= 1:
         walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
         return
