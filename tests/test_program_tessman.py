@@ -19,6 +19,11 @@ import pytest
 import programs.tessman_flat_shadows as T
 from vgx_emulator import run_program
 
+try:                                   # tests/ on sys.path (pytest, no __init__.py)
+    from reference.camera import lookat_matrix, perspective_matrix
+except ImportError:                    # tests imported as a package
+    from tests.reference.camera import lookat_matrix, perspective_matrix
+
 PROGRAM = T.__file__
 W, H = T.WIDTH, T.HEIGHT
 GROUND = np.array(T.GROUND_RGB)
@@ -26,26 +31,6 @@ MARGIN = 2                      # pixels: vertex snapping moves edges by <= 0.5 
 
 
 # -- the camera, from the reference's formulas ----------------------------------
-def lookat_matrix(v, p, twist):
-    v, p = np.asarray(v, float), np.asarray(p, float)
-    f = (p - v) / np.linalg.norm(p - v)
-    s = np.cross(f, (0.0, 1.0, 0.0))
-    s /= np.linalg.norm(s)
-    u = np.cross(s, f)
-    R = np.identity(4)
-    R[:3, 0], R[:3, 1], R[:3, 2] = s, u, -f
-    Tm = np.identity(4)
-    Tm[3, :3] = -v
-    assert twist == 0
-    return Tm @ R
-
-
-def perspective_matrix(fovy, aspect, n, f):
-    c = 1.0 / math.tan(math.radians(fovy / 20.0))
-    return np.array([[c / aspect, 0, 0, 0], [0, c, 0, 0],
-                     [0, 0, -(f + n) / (f - n), -1], [0, 0, -2 * f * n / (f - n), 0]])
-
-
 def rot_y(deg):
     c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
     return np.array([[c, 0, -s, 0], [0, 1, 0, 0], [s, 0, c, 0], [0, 0, 0, 1]])
@@ -59,7 +44,8 @@ def model_matrix():
     return rot_y(T.OBJECT_TURN / 10.0) @ Tm
 
 
-VIEW = lookat_matrix(T.EYE, T.REF, T.TWIST)
+assert T.TWIST == 0
+VIEW = lookat_matrix(T.EYE, T.REF)
 PROJ = perspective_matrix(T.FOVY, W / H, T.NEAR, T.FAR)
 
 
