@@ -177,6 +177,8 @@ class VGX:
             tex = self._texturing(win) if (b.klass == FILLED and shade) else None
             work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport,
                                           texturing=tex is not None, shade=shade)
+            # the maxima before _raster_setup: it marks them stale when the
+            # pass writes z, for the passes after this one
             zmaxima = self._z_maxima(win) if work.klass == FILLED else None
             key, planes, ip = self._raster_setup(win, work, work.klass == FILLED)
             ip[fragment.P_ZMAX] = zmaxima is not None
