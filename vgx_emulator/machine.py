@@ -316,6 +316,7 @@ class VGX:
         ip[fragment.P_BD0:fragment.P_BD5 + 1] = blend.factor_terms(st.blendfunc[1], False)
         ip[fragment.P_PATSIZE] = pat[0] if pat is not None else 1
         ip[fragment.P_ORGX], ip[fragment.P_ORGY] = win.origin
+        ip[fragment.P_PADSPAN] = config.PAD_SPAN
         return key, planes, ip
 
     # ------------------------------------------------------------------

@@ -45,7 +45,9 @@ Each pixel then goes through :func:`raster.fragment.stages`, a pure
 function written without branches on runtime state; the walker loads and
 stores the row views around it, so the span loop of the common variants
 (z test and write, stencil counting, plain colour writes) compiles to SIMD
-code.
+code.  A span shorter than ``config.PAD_SPAN`` runs over a whole number
+of vectors (``VEC`` pixels): the extra pixels of the row fail like a 0
+pattern bit, so that short spans pay no scalar remainder loop.
 """
 import functools
 import itertools
@@ -214,6 +216,10 @@ def to_fixed(v, frac):
     return np.int64(math.floor(f + 0.5))
 
 
+#: pixels per vector of the span loop (8 int32 lanes of AVX2): spans
+#: shorter than config.PAD_SPAN are padded to a multiple of it
+VEC = 8
+
 #: plane_fixed's bound: |start| + |sx| * width + |sy| * height of a
 #: triangle's box below 2**62 keeps every value of the plane in the box
 #: (``start + sy * dy + sx * dx`` and the DDA along a span) inside int64
@@ -312,6 +318,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     chalf = 1 << (CFRAC - 1)
     interp = gouraud and color and not texture
     cmax = 0xFFF if cmode else 255
+    pad = not texture
 
     @njit
     def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
@@ -330,10 +337,14 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         zhi = prm[fragment.P_ZHI]
         sy1 = prm[fragment.P_SY1]
         skip = ztest and prm[fragment.P_ZMAX] != 0
+        padspan = prm[fragment.P_PADSPAN]
         cr0_dummy = cb0[0]
         cr1_dummy = cb1[0]
         zr_dummy = zb[0]
         sr_dummy = sb[0]
+        # the row length the padded spans stay inside (0: no padding)
+        wid = zb.shape[1] if ztest else (cb0.shape[1] if color else
+                                         (sb.shape[1] if stencil else 0))
         for ylo in bands:
             yhi = min(ylo + band_rows - 1, sy1)
             for i in range(valid.shape[0]):
@@ -492,13 +503,33 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                             most = max(most, zrow[seg])
                         if zq_least > most:
                             continue
+                    # a span shorter than P_PADSPAN runs over whole vectors
+                    # (config.PAD_SPAN): its loop ends late, or near the end of
+                    # the row starts early, inside the row; the pixels outside
+                    # [xl, xr] fail like a 0 pattern bit and store what they
+                    # hold.  (Not for textures: their sampling needs the
+                    # pixel inside the triangle.)
+                    lo = xl
+                    nv = xr + 1 - xl
+                    if pad and nv < padspan:
+                        nv = (nv + VEC - 1) & -VEC
+                        if nv <= wid:
+                            lo = min(xl, wid - nv)
+                        else:
+                            nv = xr + 1 - xl
+                    early = xl - lo
+                    kin0 = np.int32(early)
+                    kin1 = np.int32(xr + 1 - lo)
+                    zf -= dz * early
                     # colours step in int32 (CFRAC = 16 keeps 0xFFF << 16 inside
-                    # it; numba widens int32 operations, hence the casts)
-                    r32 = np.int32(cr + chalf)
-                    g32 = np.int32(cg + chalf)
-                    b32 = np.int32(cbl + chalf)
-                    a32 = np.int32(ca + chalf)
-                    for x in range(xl, xr + 1):
+                    # it; numba widens int32 operations, hence the casts; the
+                    # padding pixels may wrap, they are never stored)
+                    r32 = np.int32(cr + chalf - dr * early)
+                    g32 = np.int32(cg + chalf - dg * early)
+                    b32 = np.int32(cbl + chalf - db * early)
+                    a32 = np.int32(ca + chalf - da * early)
+                    for k in range(nv):
+                        x = lo + k
                         zq = np.int32(min(max(zf >> ZFRAC, zlo), zhi))
                         zf += dz
                         w = word
@@ -541,9 +572,10 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                                                             tr, tg, tb, ta,
                                                             tp[3], tp[4], tp[5])
                             w = fragment.colour_word(cmode, r, g, bb, al)
-                        patbit = 1
+                        kk = np.int32(k)        # (an int32 test: 8 lanes)
+                        patbit = np.int32((kk >= kin0) & (kk < kin1)) if pad else np.int32(1)
                         if pattern:
-                            patbit = pat[(y + orgy) % npat, (x + orgx) % npat]
+                            patbit &= pat[(y + orgy) % npat, (x + orgx) % npat]
                         u = np.uint64(x)      # unsigned index: no wraparound test
                         zold = np.int32(zr[u]) if ztest else np.int32(0)
                         sold = np.int32(sr[u]) if stencil else np.int32(0)
