@@ -45,7 +45,8 @@ class GeometryRun:
     attribute records with a few whole-array operations."""
 
     __slots__ = ("klass", "pos", "akey", "states", "table", "swaps", "rgb", "final",
-                 "nverts", "tmpl", "no_normal", "no_colour", "no_tc", "last", "coloured")
+                 "nverts", "tmpl", "no_normal", "no_colour", "no_tc", "last", "coloured",
+                 "memo")
 
     def __init__(self, klass, pos, akey, states, table, swaps, rgb, final):
         self.klass = klass
@@ -71,6 +72,7 @@ class GeometryRun:
         self.last = np.array([-1 if st[2] is None else int(st[2] == "n") for st in states],
                              np.int64)
         self.coloured = np.array([st[3] for st in states], bool)
+        self.memo = (None, None)    # replay_run: (state key, records) of the last replay
 
 
 def _colour_of(name, args):
@@ -226,15 +228,23 @@ def replay_run(machine, win, run):
         mv, pr = st.matrices.vertex_matrices()
         b.xforms.append(Transform(mv, pr))
         b.xf_dirty = False
-    rec = run.tmpl.copy()
-    rec[run.no_normal, 0:3] = st.normal
-    rec[run.no_colour, 3:7] = st.colour
-    rec[run.no_tc, 9:13] = st.texcoord
-    lw = np.where(run.last < 0, st.last_was_normal, run.last == 1)
-    since = st.colour_since_bind | (run.coloured & (st.material != 0))
-    rec[:, 7] = np.where(lw, LAST_WAS_NORMAL, 0) | np.where(since, COLOUR_SINCE_BIND, 0)
-    rec[:, 8] = len(b.xforms) - 1
-    rec[:, 13] = b.material_ref(st)
+    # the records depend on the run and on this state only: a replay in the
+    # same state (the same object drawn again in a multipass frame) takes the
+    # records of the last one (the batch never writes into them)
+    key = (st.normal, st.colour, st.texcoord, st.last_was_normal, st.colour_since_bind,
+           st.material != 0, len(b.xforms) - 1, b.material_ref(st))
+    rec = run.memo[1] if run.memo[0] == key else None
+    if rec is None:
+        rec = run.tmpl.copy()
+        rec[run.no_normal, 0:3] = st.normal
+        rec[run.no_colour, 3:7] = st.colour
+        rec[run.no_tc, 9:13] = st.texcoord
+        lw = np.where(run.last < 0, st.last_was_normal, run.last == 1)
+        since = st.colour_since_bind | (run.coloured & (st.material != 0))
+        rec[:, 7] = np.where(lw, LAST_WAS_NORMAL, 0) | np.where(since, COLOUR_SINCE_BIND, 0)
+        rec[:, 8] = key[6]
+        rec[:, 13] = key[7]
+        run.memo = (key, rec)
     v0 = b.nverts
     b.add_vertices(run.pos, run.akey + b.add_records(rec))
     if len(run.swaps):
