@@ -6,8 +6,9 @@ arrays are (h, w) int64 with row 0 at the bottom, as IRIS GL reads them.
 """
 import numpy as np
 
-from irisgl import (SRC_AUTO, SRC_ZBUFFER, TRUE, getsize, lrectread, readsource, rectf,
-                    rectread, subpixel)
+from irisgl import (GD_ZMAX, GOURAUD, SRC_AUTO, SRC_ZBUFFER, TRUE, czclear, gconfig,
+                    getgdesc, getsize, lrectread, ortho, readsource, rectf, rectread, sclear,
+                    shademodel, stensize, subpixel, zbuffer)
 
 
 def box(x1, y1, x2, y2):
@@ -16,6 +17,21 @@ def box(x1, y1, x2, y2):
     the fill rule)."""
     subpixel(TRUE)
     rectf(x1 - 0.5, y1 - 0.5, x2 + 0.5, y2 + 0.5)
+
+
+def depth_stencil_window(open_window, w, h):
+    """A w x h RGB window with 8 stencil planes and the z-buffer on, pixel
+    centres at integer x and y (z in -1..1), sub-pixel vertices, Gouraud
+    shading; colour, z and stencil cleared (0, far, 0)."""
+    open_window(w, h)
+    stensize(8)
+    gconfig()
+    ortho(-0.5, w - 0.5, -0.5, h - 0.5, -1.0, 1.0)
+    subpixel(TRUE)
+    shademodel(GOURAUD)
+    zbuffer(TRUE)
+    czclear(0, getgdesc(GD_ZMAX))
+    sclear(0)
 
 
 def colour():

@@ -14,14 +14,13 @@ blending, stencil counting and a window narrower than one vector.
 import numpy as np
 import pytest
 
-from irisgl import (BF_ONE, BF_ZERO, GD_ZMAX, GOURAUD, PATTERN_16, SF_ALWAYS, SF_GEQUAL,
-                    ST_INCR, ST_KEEP, ST_REPLACE, TRUE, ZF_ALWAYS, ZF_LESS, bgnpolygon,
-                    blendfunction, c4i, czclear, defpattern, endpolygon, gconfig, getgdesc,
-                    lrectwrite, ortho, sclear, scrmask, setpattern, shademodel, stencil,
-                    stensize, subpixel, v3f, zbuffer, zfunction)
+from irisgl import (BF_ONE, BF_ZERO, PATTERN_16, SF_ALWAYS, SF_GEQUAL, ST_INCR, ST_KEEP,
+                    ST_REPLACE, TRUE, ZF_ALWAYS, ZF_LESS, bgnpolygon, blendfunction, c4i,
+                    defpattern, endpolygon, lrectwrite, scrmask, setpattern, stencil, v3f,
+                    zfunction)
 from vgx_emulator import config
 
-from banks import colour, stencil_bank, z_bank
+from banks import colour, depth_stencil_window, stencil_bank, z_bank
 
 
 def _tris(rnd, n, w, h, size):
@@ -41,16 +40,8 @@ def _tris(rnd, n, w, h, size):
 
 
 def _scene(open_window, seed, w, h):
-    open_window(w, h)
-    stensize(8)
-    gconfig()
-    ortho(-0.5, w - 0.5, -0.5, h - 0.5, -1.0, 1.0)
-    subpixel(TRUE)
-    shademodel(GOURAUD)
-    zbuffer(TRUE)
+    depth_stencil_window(open_window, w, h)
     rnd = np.random.default_rng(seed)
-    czclear(0, getgdesc(GD_ZMAX))
-    sclear(0)
     lrectwrite(0, 0, w - 1, h - 1,
                rnd.integers(0, 1 << 32, w * h, dtype=np.uint64).astype(np.uint32))
     # z different everywhere (large triangles at any z) and the stencil

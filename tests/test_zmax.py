@@ -12,13 +12,12 @@ are too low on purpose, to show that the walker does read them.
 import numpy as np
 import pytest
 
-from irisgl import (FALSE, GD_ZMAX, GOURAUD, ST_INCR, ST_KEEP, SF_ALWAYS, SF_EQUAL, TRUE,
-                    ZF_ALWAYS, ZF_EQUAL, ZF_GREATER, ZF_LEQUAL, ZF_LESS, bgnpolygon, c4i,
-                    czclear, endpolygon, getgdesc, ortho, sclear, scrmask, shademodel,
-                    stencil, stensize, subpixel, v3f, viewport, wmpack, zbuffer, zclear,
-                    zfunction, zwritemask, gconfig)
+from irisgl import (FALSE, GD_ZMAX, ST_INCR, ST_KEEP, SF_ALWAYS, SF_EQUAL, TRUE, ZF_ALWAYS,
+                    ZF_EQUAL, ZF_GREATER, ZF_LEQUAL, ZF_LESS, bgnpolygon, c4i, czclear,
+                    endpolygon, getgdesc, ortho, scrmask, stencil, v3f, viewport, wmpack,
+                    zbuffer, zclear, zfunction, zwritemask)
 
-from banks import colour, stencil_bank, z_bank
+from banks import colour, depth_stencil_window, stencil_bank, z_bank
 
 W, H = 96, 64
 
@@ -38,16 +37,8 @@ def _tris(rnd, n):
 def _scene(open_window, seed):
     """Passes whose z-failing fragments change nothing (maxima used) between
     passes that write z in every way (maxima rebuilt or not used)."""
-    open_window(W, H)
-    stensize(8)
-    gconfig()
-    ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
-    subpixel(TRUE)
-    shademodel(GOURAUD)
-    zbuffer(TRUE)
+    depth_stencil_window(open_window, W, H)
     rnd = np.random.default_rng(seed)
-    czclear(0, getgdesc(GD_ZMAX))
-    sclear(0)
     _tris(rnd, 12)                           # LEQUAL, z written: maxima stale
     zfunction(ZF_LESS)
     _tris(rnd, 12)                           # rebuilt, then stale again
