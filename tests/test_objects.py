@@ -40,12 +40,14 @@ def _scene(with_object):
         cpack(0xFF00FF00)
         _square(12)
         closeobj()
+    # the object without colour calls, or its immediate-mode twin
+    square = (lambda: callobj(plain)) if with_object else (lambda: _square(0))
     cpack(0xFF0000FF)
-    callobj(plain) if with_object else _square(0)
+    square()
     cpack(0xFFFF0000)                       # the same object, another colour
-    callobj(plain) if with_object else _square(0)
+    square()
     translate(6, 0, 0)                      # and another transform
-    callobj(plain) if with_object else _square(0)
+    square()
     translate(-6, 0, 0)
     if with_object:
         callobj(coloured)
@@ -53,7 +55,7 @@ def _scene(with_object):
         cpack(0xFF00FF00)
         _square(12)
     translate(18, 0, 0)
-    callobj(plain) if with_object else _square(0)    # the colour it left
+    square()                                # in the colour the last one left
     return lrectread(0, 0, W - 1, H - 1).astype(np.int64)
 
 

@@ -231,8 +231,10 @@ def replay_run(machine, win, run):
     # the records depend on the run and on this state only: a replay in the
     # same state (the same object drawn again in a multipass frame) takes the
     # records of the last one (the batch never writes into them)
+    xform = len(b.xforms) - 1
+    mat = b.material_ref(st)
     key = (st.normal, st.colour, st.texcoord, st.last_was_normal, st.colour_since_bind,
-           st.material != 0, len(b.xforms) - 1, b.material_ref(st))
+           st.material != 0, xform, mat)
     rec = run.memo[1] if run.memo[0] == key else None
     if rec is None:
         rec = run.tmpl.copy()
@@ -242,8 +244,8 @@ def replay_run(machine, win, run):
         lw = np.where(run.last < 0, st.last_was_normal, run.last == 1)
         since = st.colour_since_bind | (run.coloured & (st.material != 0))
         rec[:, 7] = np.where(lw, LAST_WAS_NORMAL, 0) | np.where(since, COLOUR_SINCE_BIND, 0)
-        rec[:, 8] = key[6]
-        rec[:, 13] = key[7]
+        rec[:, 8] = xform
+        rec[:, 13] = mat
         run.memo = (key, rec)
     v0 = b.nverts
     b.add_vertices(run.pos, run.akey + b.add_records(rec))
