@@ -480,3 +480,21 @@ def test_finite_input_gives_no_warning():
         _poly([(0.0, 0.0, 0.0, 1.0), (1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 1.0)], v4f)
         _other()
         _read()
+
+
+def test_window_fixed_places_only_vertices_inside_the_limits():
+    """viewport.window_fixed: a vertex is placed when its window z is below
+    Z_LIMIT (the walker's 32-bit z lanes rely on it) and x, y fit the fixed
+    point; NaN is never placed.  Clipping keeps real geometry in the depth
+    range, so only clip-space input the clipper did not see reaches the
+    limit."""
+    from vgx_emulator.geometry import viewport
+    vp, dr = (0, 99, 0, 99), (0, 0x7FFFFF)
+    zl = 1.01 * viewport.Z_LIMIT / (0x7FFFFF / 2)   # clip z/w whose window z is past it
+    v = np.array([[0, 0, 0.5, 1], [0.5, 0, 0, 1], [0, 0.5, zl, 1],
+                  [0, 0, np.nan, 1], [0, 0, -zl, 1]], float)
+    tris = np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4], [0, 1, 1]])
+    X, Y, Z, ok, lost = viewport.window_fixed(v, tris, vp, dr, False)
+    assert ok.tolist() == [True, True, False, False, False]
+    assert lost.tolist() == [True, True, True, False]
+    assert Z[0] == pytest.approx(0x7FFFFF * 0.75)
