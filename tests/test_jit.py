@@ -3,12 +3,14 @@ instruction) and plain Python (NUMBA_DISABLE_JIT) wrap the same way."""
 import numpy as np
 import pytest
 
-from vgx_emulator.jit import add32, helper, sra32
+import numba
+
+from vgx_emulator.jit import add32, sra32
 
 EDGES = [0, 1, -1, 2**31 - 1, -2**31, 2**31 - 2, -2**31 + 1, 12345678, -87654321, 0xFFFF << 16]
 
 
-@helper
+@numba.njit(cache=False)
 def _compiled(a, b, n):
     return add32(np.int32(a), np.int32(b)), sra32(np.int32(a), n)
 
