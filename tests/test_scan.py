@@ -915,3 +915,25 @@ def test_constant_colour_looks_only_at_used_vertices_front_and_back():
     back = c.copy()
     back[2, 3] = 0.0
     assert not WindowWork(klass=0, C=c, CB=back, tris=w.tris).constant_colour()
+
+
+@pytest.mark.parametrize("field", ["ztest", "zwrite", "color", "gouraud", "cmode", "twoside",
+                                   "stencil", "blend", "logic", "atest", "pattern",
+                                   "cmask", "texture", "dual"])
+def test_kernel_variants_have_distinct_cache_keys(field):
+    """numba keys a cached kernel on its closure cells: two variants that
+    differ in any one field of the raster key must differ there, or the
+    second would load the first's compiled code from the disk cache."""
+    from vgx_emulator.raster.blend import GENERIC
+    from vgx_emulator.raster.variants import RasterKey
+    from vgx_emulator.scan import lines, spans, triangles
+    base = RasterKey(True, True, True, True, False, False, 2, 0, False, False, False,
+                     False, False, False)
+    other = base._replace(**{field: GENERIC if field == "blend" else
+                             (1 if field == "stencil" else not getattr(base, field))})
+
+    def cells(kernel):
+        return tuple(c.cell_contents for c in kernel.py_func.__closure__)
+    for make in (triangles._make_triangle_kernel, lines._make_line_kernel,
+                 lines._make_point_kernel, spans._make_pixel_kernel):
+        assert cells(make(*base)) != cells(make(*other))

@@ -4,6 +4,8 @@ Every kernel is compiled through :func:`njit` (serial) or :func:`pnjit`
 (``parallel=True``, when enabled).  ``NUMBA_DISABLE_JIT=1`` runs the kernels
 as plain Python for coverage and debugging.
 """
+import types as types_module
+
 import numba
 import numpy as np
 from numba.core import types
@@ -104,3 +106,18 @@ def _add32_impl(a, b):
 @overload(sra32)
 def _sra32_impl(a, n):
     return lambda a, n: _sra32(a, n)
+
+
+def bind_globals(fn, **names):
+    """``fn`` with ``names`` added to its globals, for a kernel factory to
+    hand its kernel the dispatchers made for its variant (the per-fragment
+    stages).  Not through the closure: numba's disk cache keys a closure on
+    the pickled contents of its cells, and a dispatcher pickles with an id
+    drawn anew in every process, so such a kernel would be compiled again by
+    every process.  The names must be determined by the closure's other
+    cells (the variant's flags), which the cache key does hold."""
+    f = types_module.FunctionType(fn.__code__, dict(fn.__globals__, **names), fn.__name__,
+                                  fn.__defaults__, fn.__closure__)
+    f.__qualname__ = fn.__qualname__
+    f.__doc__ = fn.__doc__
+    return f

@@ -29,6 +29,7 @@ def _source_hash():
         for f in sorted((_PKG / sub).glob("*.py")):
             h.update(f.read_bytes())
     h.update((_PKG / "config.py").read_bytes())
+    h.update((_PKG / "jit.py").read_bytes())
     h.update((_PKG / "framebuffer" / "zmax.py").read_bytes())
     return h.hexdigest()[:16]
 
@@ -43,3 +44,12 @@ KERNEL_SOURCE_HASH = _source_hash()
 #: both enabled), so that the common one-buffer loop has no per-pixel test.
 RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside "
                                     "stencil blend logic atest pattern cmask texture dual")
+
+
+def cache_tag(*key):
+    """The closure constant that keys a kernel variant's disk cache: the
+    source hash and every field of its key.  numba keys a cached closure on
+    its cells, and a kernel whose body no longer names a flag (the stages
+    reach it through jit.bind_globals) would otherwise share its cache entry
+    with the variant that differs only in that flag."""
+    return KERNEL_SOURCE_HASH + repr(tuple(key))

@@ -18,10 +18,10 @@ the same per-fragment operations as triangles (:mod:`raster.fragment`).
 """
 import math
 
-from ..jit import njit
+from ..jit import bind_globals, njit
 from ..raster import fragment
 from ..raster.blend import key_terms
-from ..raster.variants import KERNEL_SOURCE_HASH
+from ..raster.variants import cache_tag
 
 _kernels = {}
 
@@ -40,12 +40,19 @@ def point_kernel(key):
     return k
 
 
+def _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual):
+    """The per-fragment function of a line or point variant (no pattern
+    stage: defpattern(3G) applies to filled primitives only)."""
+    return fragment.fragment_function(ztest, zwrite, color, cmode, stencil, blend, logic,
+                                      atest, False, cmask, dual)
+
+
 def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                       stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    src_hash = KERNEL_SOURCE_HASH
+    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
+                         logic, atest, pattern, cmask, texture, dual)
     bterms = key_terms(blend)
 
-    @njit
     def draw_lines(P0, P1, FLAT, closed, planes, ip):
         """P0, P1: (S, 7) rows x, y, z, r, g, b, a; FLAT: (S, 4) colours."""
         _ = src_hash
@@ -98,18 +105,17 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     g = FLAT[s, 1]
                     b = FLAT[s, 2]
                     a = FLAT[s, 3]
-                fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic,
-                                  atest, False, cmask, dual, bt, x, y, z, r, g, b, a, planes, ip)
+                frag(bt, x, y, z, r, g, b, a, planes, ip)
 
-    return draw_lines
+    return njit(bind_globals(draw_lines, frag=_fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)))
 
 
 def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                        stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    src_hash = KERNEL_SOURCE_HASH
+    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
+                         logic, atest, pattern, cmask, texture, dual)
     bterms = key_terms(blend)
 
-    @njit
     def draw_points(P, planes, ip):
         """P: (N, 7) rows x, y, z, r, g, b, a."""
         _ = src_hash
@@ -121,9 +127,7 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 continue
             if y < ip[fragment.P_SY0] or y > ip[fragment.P_SY1]:
                 continue
-            fragment.fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest,
-                              False, cmask, dual, bt, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5],
-                              P[i, 6], planes, ip)
+            frag(bt, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5], P[i, 6], planes, ip)
 
-    return draw_points
+    return njit(bind_globals(draw_points, frag=_fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)))
 

@@ -5,9 +5,9 @@ import math
 
 import numpy as np
 
-from ..jit import njit
+from ..jit import bind_globals, njit
 from ..raster.depth import masked_write
-from ..raster.variants import KERNEL_SOURCE_HASH
+from ..raster.variants import KERNEL_SOURCE_HASH, cache_tag
 
 
 @njit
@@ -82,11 +82,10 @@ def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                        stencil, blend, logic, atest, pattern, cmask, texture, dual):
     from ..raster import fragment as F
     from ..raster.blend import key_terms
-    from ..raster.variants import KERNEL_SOURCE_HASH
-    src_hash = KERNEL_SOURCE_HASH
+    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
+                         logic, atest, pattern, cmask, texture, dual)
     bterms = key_terms(blend)
 
-    @njit
     def write_pixels(words, x1, y1, xzoom, yzoom, planes, ip):
         """words: (h, w) source rows, row 0 at the bottom; lower-left at (x1, y1)."""
         _ = src_hash
@@ -113,7 +112,8 @@ def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     g = float((v >> 8) & 0xFF)
                     b = float((v >> 16) & 0xFF)
                     a = float((v >> 24) & 0xFF)
-                F.fragment(False, False, color, cmode, False, blend, logic, atest, False,
-                           cmask, dual, bt, x, y, 0.0, r, g, b, a, planes, ip)
+                frag(bt, x, y, 0.0, r, g, b, a, planes, ip)
 
-    return write_pixels
+    frag = F.fragment_function(False, False, color, cmode, False, blend, logic, atest, False,
+                               cmask, dual)
+    return njit(bind_globals(write_pixels, frag=frag))

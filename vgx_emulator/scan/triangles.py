@@ -41,7 +41,7 @@ span (the span processor):
   then divided), sample and apply the texture environment
   (raster/texture.py); their z is the same plane as untextured ones.
 
-Each pixel then goes through :func:`raster.fragment.stages`, a pure
+Each pixel then goes through the variant's :func:`raster.fragment.stage_function`, a pure
 function written without branches on runtime state; the walker loads and
 stores the row views around it, so the span loop of the common variants
 (z test and write, stencil counting, plain colour writes) compiles to SIMD
@@ -58,12 +58,12 @@ import numba
 import numpy as np
 
 from .. import config
-from ..jit import add32, helper, njit, sra32
+from ..jit import add32, bind_globals, helper, njit, sra32
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.blend import key_terms
 from ..framebuffer.zmax import SEGMENT_SHIFT as ZSEG_SHIFT
-from ..raster.variants import KERNEL_SOURCE_HASH
+from ..raster.variants import KERNEL_SOURCE_HASH, cache_tag
 from .fixed import SHIFT, edge_coefficients, owns_edge
 
 #: fractional bits of the z and colour DDAs along a span
@@ -314,7 +314,8 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
 
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                           stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    src_hash = KERNEL_SOURCE_HASH      # closure constant: keys the disk cache
+    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
+                         logic, atest, pattern, cmask, texture, dual)   # keys the disk cache
     bterms = key_terms(blend)          # the blend factors of a folded pair
     band_rows = config.BAND_ROWS
     zhalf = 1 << (ZFRAC - 1)
@@ -323,7 +324,6 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     cmax = 0xFFF if cmode else 255
     pad = not texture
 
-    @njit
     def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
         """Rows of every triangle in the bands starting at rows ``bands``
         (run_bands), in submission order."""
@@ -589,9 +589,8 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         sold = np.int32(sr[u]) if stencil else np.int32(0)
                         c0 = np.int64(cr0[u]) if color else np.int64(0)
                         c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
-                        ok, zn, sn, n0, n1 = fragment.stages(
-                            ztest, zwrite, stencil, blend, logic, atest, cmask, cmode,
-                            patbit, zq, zold, sold, c0, c1, w, bt, prm)
+                        ok, zn, sn, n0, n1 = stages(patbit, zq, zold, sold, c0, c1,
+                                                    w, bt, prm)
                         if stencil == 2:        # (1: the stencil is only tested)
                             sr[u] = sn
                         if zwrite:
@@ -601,4 +600,6 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                             if dual:
                                 cr1[u] = n1
 
-    return walk
+    # the variant's stages as a global of the walker (jit.bind_globals)
+    return njit(bind_globals(walk, stages=fragment.stage_function(
+        ztest, zwrite, stencil, blend, logic, atest, cmask, cmode)))
