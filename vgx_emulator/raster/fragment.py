@@ -22,8 +22,9 @@ registers, not memory that might alias the banks.  Which stages run is
 decided by the kernel's compile-time flags (raster/variants.py); their
 parameters (functions, references, masks, factors) are runtime values.
 
-``stages`` is the one implementation of the stages: a pure function of the
-incoming and stored values, written as selects rather than early returns.
+``stage_function(flags)`` is the one implementation of the stages: for
+the flags of a kernel variant, a pure function of the incoming and stored
+values, written as selects on int32 masks rather than early returns.
 Every stage computes its verdict and the stores keep the old value where
 the fragment was rejected: the result is the same as testing stage by
 stage, and a span loop around it compiles to vector code (z, stencil and
