@@ -69,6 +69,11 @@ from .fixed import SHIFT, edge_coefficients, owns_edge
 #: fractional bits of the z and colour DDAs along a span
 ZFRAC = 30
 CFRAC = 16
+#: their fixed-point ones as floats: the scale to_fixed and plane_fixed
+#: take (a float, so that numba compiles each helper once, not once per
+#: literal number of bits)
+ZONE = float(1 << ZFRAC)
+CONE = float(1 << CFRAC)
 
 CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
 
@@ -207,10 +212,11 @@ def edge_clip(A, q, xl, xr):
 
 
 @helper
-def to_fixed(v, frac):
-    """float -> int64 with ``frac`` fractional bits (round to nearest); 0 for
-    steps too large to matter (a span of such a triangle is one pixel)."""
-    f = v * float(1 << frac)
+def to_fixed(v, one):
+    """float -> int64 in fixed point whose one is ``one`` (2**bits; ZONE,
+    CONE), rounded to nearest; 0 for steps too large to matter (a span of
+    such a triangle is one pixel)."""
+    f = v * one
     if not (abs(f) < 4.0e18):
         return np.int64(0)
     return np.int64(math.floor(f + 0.5))
@@ -230,14 +236,14 @@ PLANE_LIMIT = float(1 << 62)
 
 
 @helper
-def plane_fixed(v0, dvb, dvc, wb, wc, dwb, dwc, dwby, dwcy, frac, width, height):
+def plane_fixed(v0, dvb, dvc, wb, wc, dwb, dwc, dwby, dwcy, one, width, height):
     """A linear attribute ``v0 + dvb * wb + dvc * wc`` (wb, wc: barycentric
     weights of vertices b and c at a reference pixel, the corner of a box of
-    width x height pixels) in fixed point with ``frac`` bits: (value at the
+    width x height pixels) in fixed point whose one is ``one``: (value at the
     reference, step per pixel in x, step per row, ok).  ok is False when the
     plane does not fit PLANE_LIMIT over the box (a degenerate sliver): the
     caller then evaluates each span start exactly."""
-    f = float(1 << frac)
+    f = one
     ref = (v0 + dvb * wb + dvc * wc) * f
     sx = (dvb * dwb + dvc * dwc) * f
     sy = (dvb * dwby + dvc * dwcy) * f
@@ -394,9 +400,9 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 bw = box[i, 1] - xb + 1
                 bh = box[i, 3] - yb + 1
                 zref, dz, dzy, zok = plane_fixed(za, zba, zca, wbr, wcr, dwb, dwc,
-                                                 dwby, dwcy, ZFRAC, bw, bh)
+                                                 dwby, dwcy, ZONE, bw, bh)
                 if not zok:
-                    dz = to_fixed(zba * dwb + zca * dwc, ZFRAC)
+                    dz = to_fixed(zba * dwb + zca * dwc, ZONE)
                 # flat colour: the provoking vertex
                 pv = prov[i]
                 word = fragment.colour_word(cmode, cols[pv, 0], cols[pv, 1],
@@ -411,19 +417,19 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     ba = cols[a, 2]
                     aa = cols[a, 3]
                     rref, dr, dry, rok = plane_fixed(ra, cols[b, 0] - ra, cols[c, 0] - ra,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
                     gref, dg, dgy, gok = plane_fixed(ga, cols[b, 1] - ga, cols[c, 1] - ga,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
                     bref, db, dby, bok = plane_fixed(ba, cols[b, 2] - ba, cols[c, 2] - ba,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
                     aref, da, day, aok = plane_fixed(aa, cols[b, 3] - aa, cols[c, 3] - aa,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CFRAC, bw, bh)
+                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
                     cok = rok and gok and bok and aok
                     if not cok:
-                        dr = to_fixed((cols[b, 0] - ra) * dwb + (cols[c, 0] - ra) * dwc, CFRAC)
-                        dg = to_fixed((cols[b, 1] - ga) * dwb + (cols[c, 1] - ga) * dwc, CFRAC)
-                        db = to_fixed((cols[b, 2] - ba) * dwb + (cols[c, 2] - ba) * dwc, CFRAC)
-                        da = to_fixed((cols[b, 3] - aa) * dwb + (cols[c, 3] - aa) * dwc, CFRAC)
+                        dr = to_fixed((cols[b, 0] - ra) * dwb + (cols[c, 0] - ra) * dwc, CONE)
+                        dg = to_fixed((cols[b, 1] - ga) * dwb + (cols[c, 1] - ga) * dwc, CONE)
+                        db = to_fixed((cols[b, 2] - ba) * dwb + (cols[c, 2] - ba) * dwc, CONE)
+                        da = to_fixed((cols[b, 3] - aa) * dwb + (cols[c, 3] - aa) * dwc, CONE)
                 # per-pixel colour steps in int32: two covered pixels of a row
                 # differ by at most 0xFFF, so a step of a longer span fits
                 dr32 = np.int32(dr)
@@ -477,7 +483,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         z0 = zref + dzy * oy + dz * ox
                     else:
                         z0 = to_fixed(za + zba * ((e1 + o1) * ia) + zca * ((e2 + o2) * ia),
-                                      ZFRAC)
+                                      ZONE)
                     cr = cg = cbl = ca = np.int64(0)
                     if interp:
                         if cok:
@@ -489,13 +495,13 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                             wb = (e1 + o1) * ia
                             wc = (e2 + o2) * ia
                             cr = to_fixed(cols[a, 0] + (cols[b, 0] - cols[a, 0]) * wb
-                                          + (cols[c, 0] - cols[a, 0]) * wc, CFRAC)
+                                          + (cols[c, 0] - cols[a, 0]) * wc, CONE)
                             cg = to_fixed(cols[a, 1] + (cols[b, 1] - cols[a, 1]) * wb
-                                          + (cols[c, 1] - cols[a, 1]) * wc, CFRAC)
+                                          + (cols[c, 1] - cols[a, 1]) * wc, CONE)
                             cbl = to_fixed(cols[a, 2] + (cols[b, 2] - cols[a, 2]) * wb
-                                           + (cols[c, 2] - cols[a, 2]) * wc, CFRAC)
+                                           + (cols[c, 2] - cols[a, 2]) * wc, CONE)
                             ca = to_fixed(cols[a, 3] + (cols[b, 3] - cols[a, 3]) * wb
-                                          + (cols[c, 3] - cols[a, 3]) * wc, CFRAC)
+                                          + (cols[c, 3] - cols[a, 3]) * wc, CONE)
                     # the DDAs start half a unit up so that >> rounds to nearest
                     zf = z0 + zhalf
                     if skip and zok:
