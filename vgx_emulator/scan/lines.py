@@ -107,7 +107,8 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     a = FLAT[s, 3]
                 frag(bt, x, y, z, r, g, b, a, planes, ip)
 
-    return njit(bind_globals(draw_lines, frag=_fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)))
+    frag = _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)
+    return njit(bind_globals(draw_lines, frag=frag))
 
 
 def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
@@ -129,5 +130,6 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 continue
             frag(bt, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5], P[i, 6], planes, ip)
 
-    return njit(bind_globals(draw_points, frag=_fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)))
+    frag = _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)
+    return njit(bind_globals(draw_points, frag=frag))
 

@@ -41,11 +41,11 @@ span (the span processor):
   then divided), sample and apply the texture environment
   (raster/texture.py); their z is the same plane as untextured ones.
 
-Each pixel then goes through the variant's :func:`raster.fragment.stage_function`, a pure
-function written without branches on runtime state; the walker loads and
-stores the row views around it, so the span loop of the common variants
-(z test and write, stencil counting, plain colour writes) compiles to SIMD
-code.  A span shorter than ``config.PAD_SPAN`` runs over a whole number
+Each pixel then goes through the stages of the variant
+(:func:`raster.fragment.stage_function`), a pure function written without
+branches on runtime state; the walker loads and stores the row views
+around it, so the span loop of the common variants (z test and write,
+stencil counting, plain colour writes) compiles to SIMD code.  A span shorter than ``config.PAD_SPAN`` runs over a whole number
 of vectors (``VEC`` pixels): the extra pixels of the row fail like a 0
 pattern bit, so that short spans pay no scalar remainder loop.
 """
@@ -243,10 +243,9 @@ def plane_fixed(v0, dvb, dvc, wb, wc, dwb, dwc, dwby, dwcy, one, width, height):
     reference, step per pixel in x, step per row, ok).  ok is False when the
     plane does not fit PLANE_LIMIT over the box (a degenerate sliver): the
     caller then evaluates each span start exactly."""
-    f = one
-    ref = (v0 + dvb * wb + dvc * wc) * f
-    sx = (dvb * dwb + dvc * dwc) * f
-    sy = (dvb * dwby + dvc * dwcy) * f
+    ref = (v0 + dvb * wb + dvc * wc) * one
+    sx = (dvb * dwb + dvc * dwc) * one
+    sy = (dvb * dwby + dvc * dwcy) * one
     if not (abs(ref) + abs(sx) * width + abs(sy) * height < PLANE_LIMIT):
         return np.int64(0), np.int64(0), np.int64(0), False
     return (np.int64(math.floor(ref + 0.5)), np.int64(math.floor(sx + 0.5)),
