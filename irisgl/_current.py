@@ -13,13 +13,29 @@ machine = VGX()
 #: calls allowed between bgn* and end* (bgnpolygon(3G)); the rest raise there.
 _INSIDE_OK = set()
 
+#: every IRIS GL call irisgl defines: name -> (status, why).  ``status`` is
+#: IMPLEMENTED (behaves per its man page), HEADLESS (keeps its state and
+#: answers its queries without a display; takes effect in a real window) or
+#: NOT_EMULATED (raises GLError saying why).  docs/api.md is generated from it.
+IMPLEMENTED, HEADLESS, NOT_EMULATED = "implemented", "headless", "not emulated"
+API = {}
 
-def glcall(fn=None, *, inside=False):
+#: calls run at once even while an object is open (never recorded):
+#: queries, window and configuration calls, definitions that objects(3G)
+#: says are immediate-only.  Calls join it with ``glcall(immediate=True)``.
+IMMEDIATE = set()
+
+
+def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""):
     """Wrap an IRIS GL call: in lenient mode a GLError is printed as
     ``GL: <message>`` and the call ignored; calls not allowed inside bgn/end
-    raise there."""
+    raise there.  ``immediate`` calls are never recorded into an object;
+    ``status``/``why`` classify the call for docs/api.md (see ``API``)."""
     def wrap(f):
         name = f.__name__
+        API[name] = (status, why)
+        if immediate or name.startswith(("get", "is")):    # queries: never recorded
+            IMMEDIATE.add(name)
         if inside:
             _INSIDE_OK.add(name)
 
@@ -57,8 +73,18 @@ def glcall(fn=None, *, inside=False):
 
 
 def _immediate():
-    from .objects import IMMEDIATE
     return IMMEDIATE
+
+
+def not_emulated(name, why):
+    """An IRIS GL call the emulated VGX does not provide: it exists, and
+    calling it raises GLError naming the call and saying why (porting
+    conventions 5: never a NameError, never a silent no-op)."""
+    def call(*args, **kwargs):
+        fail(name, f"not emulated: {why}")
+    call.__name__ = call.__qualname__ = name
+    call.__doc__ = f"{name}(3G): not emulated ({why})."
+    return glcall(call, immediate=True, status=NOT_EMULATED, why=why)
 
 
 def _record(name, fn, args):

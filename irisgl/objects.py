@@ -16,12 +16,12 @@ from vgx_emulator import objects as O
 from vgx_emulator.errors import fail, warn
 
 from . import constants as K
-from ._current import glcall, integer, machine, win
+from ._current import IMMEDIATE, glcall, integer, machine, win
 
 __all__ = ["makeobj", "closeobj", "callobj", "genobj", "isobj", "delobj", "editobj",
            "maketag", "gentag", "istag", "objreplace", "objinsert", "objdelete", "getopenobj"]
 
-IMMEDIATE = {
+IMMEDIATE.update({
     "makeobj", "closeobj", "genobj", "isobj", "delobj", "editobj", "gentag", "istag",
     "objreplace", "objinsert", "objdelete", "maketag", "getopenobj",
     "winopen", "winclose", "winset", "winget", "prefsize", "prefposition", "keepaspect",
@@ -29,7 +29,7 @@ IMMEDIATE = {
     "singlebuffer", "stensize", "acsize", "zbsize", "gconfig", "gexit", "ginit", "greset",
     "swapbuffers", "gflush", "finish", "defpattern", "mapcolor", "qdevice", "unqdevice",
     "qenter", "qreset", "qread", "qtest", "isqueued", "tie", "readsource", "lrectread",
-    "rectread", "getgdesc", "gRGBcolor", "lgetdepth", "defbasis"}
+    "rectread", "getgdesc", "gRGBcolor", "lgetdepth", "defbasis"})
 
 
 class _Object:
