@@ -12,14 +12,14 @@ from vgx_emulator.errors import GLError
 
 from . import (accum, attributes, clipping, colormap, constants, cursor, curves, depth,
                depthcue, drawing2d, drawmode, events, fog, fragment, lighting, lines, mapping,
-               matrix, menus, objects, pattern, picking, pixels, primitives, stencil, system,
-               text, texture, types, window)
+               matrix, menus, nurbs, objects, pattern, picking, pixels, primitives, stencil,
+               system, text, texture, types, window)
 from . import not_emulated     # last: the calls no module above provides
 
 _MODULES = (constants, types, window, matrix, primitives, lighting, depth, events, colormap,
             pixels, fragment, pattern, stencil, accum, objects, curves, texture, text, menus,
             drawing2d, lines, depthcue, drawmode, picking, cursor, attributes, system,
-            clipping, fog, mapping, not_emulated)
+            clipping, fog, mapping, nurbs, not_emulated)
 
 __all__ = ["GLError"]
 for _m in _MODULES:

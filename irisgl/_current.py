@@ -107,11 +107,15 @@ def win(call):
 
 # -- validators ------------------------------------------------------------
 def vec(call, v, n, what="array"):
-    """A C array argument of n numbers as a tuple of floats."""
+    """A C array argument of n numbers as a tuple of floats.  A longer array
+    is read from its first n elements, as C reads a ``float[4]`` row passed
+    where ``float[3]`` is expected; fewer than n is an error."""
     try:
-        if len(v) != n:
+        if len(v) < n:
             fail(call, f"{what} has {len(v)} elements", f"it takes {n}")
-        return tuple(float(x) for x in v)
+        if isinstance(v, str):
+            raise TypeError
+        return tuple(float(v[i]) for i in range(n))
     except TypeError:
         fail(call, f"{what} is not a sequence of {n} numbers", f"pass {n} numbers")
     except ValueError:

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from vgx_emulator.errors import fail
+from vgx_emulator.errors import fail, warn
 from vgx_emulator.geometry import stack as S
 
 from . import constants as K
@@ -164,8 +164,13 @@ def perspective(fovy, aspect, near, far):
         fail("perspective", f"fovy {fovy:g}", "fovy is in tenths of degrees, > 2 and < 1800")
     if not (math.isfinite(aspect) and aspect != 0):
         fail("perspective", f"aspect {aspect:g}", "a finite, non-zero width/height")
-    if not (near > 0 and far > 0 and near != far and math.isfinite(near + far)):
-        fail("perspective", f"near {near:g}, far {far:g}", "both > 0 and different")
+    if near == far or not math.isfinite(near + far):
+        fail("perspective", f"near {near:g}, far {far:g}", "finite and different")
+    if not (near > 0 and far > 0):
+        # perspective(3G): near and far are "always positive", but no error is
+        # listed and programs passed near = 0: computed as the library did
+        warn("perspective", f"near {near:g}, far {far:g}: the man page asks for both > 0; "
+             "the degenerate projection is loaded")
     _load_projection("perspective", S.perspective(fovy, aspect, near, far))
 
 

@@ -12,6 +12,8 @@ follows tag t up to the next tag, ``objinsert(t)`` inserts after tag t,
 ``objdelete(t1, t2)`` removes what lies between the two tags, and
 ``closeobj`` ends the editing.
 """
+import numpy as np
+
 from vgx_emulator import objects as O
 from vgx_emulator.errors import fail, warn
 
@@ -42,11 +44,29 @@ class _Object:
 
 
 def record(name, fn, args):
-    """Called by the glcall wrapper while an object is open."""
+    """Called by the glcall wrapper while an object is open.  The arguments
+    are copied now, as C copies the values at the call: a program that
+    reuses one scratch array while it builds an object replays what it sent
+    (makeobj(3G) compiles values, not references)."""
     rec = machine.recording
     obj = machine.objects[rec]
-    obj.items.insert(obj.cursor, ("call", name, fn, args))
+    obj.items.insert(obj.cursor, ("call", name, fn, tuple(_value(a) for a in args)))
     obj.cursor += 1
+
+
+def _value(a):
+    """A copy of an argument that later changes to the caller's array cannot
+    reach: arrays and sequences are copied (recursively), scalars, strings
+    and callables are kept."""
+    if isinstance(a, np.ndarray):
+        return a.copy()
+    if isinstance(a, (list, tuple)):
+        return type(a)(_value(x) for x in a) if type(a) in (list, tuple) else a
+    if isinstance(a, (bytearray, memoryview)):
+        return bytes(a)
+    if isinstance(a, dict):
+        return {k: _value(v) for k, v in a.items()}
+    return a
 
 
 def _obj_id(call, obj):

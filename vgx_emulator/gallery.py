@@ -1,7 +1,9 @@
 """vgx-gallery: render every figure of every seed program into a folder with
 an index.html (the project's main job).
 
-Contract with the programs: a program module in ``programs/`` that defines
+Two sections: the seed programs' figures (``programs/``), then the demo
+programs of our own (``programs/demos/``).  Contract with the programs: a
+program module in either folder that defines
 ``FIGURES`` (a list of dicts with ``name``, ``caption``, ``args``) takes part;
 each figure is drawn by running the program headless as ``vgx-run`` would,
 with ``args`` as its command line, for one frame (``frames`` in the dict to
@@ -33,14 +35,22 @@ def _figures_of(path):
     return None
 
 
+#: the gallery's sections: (title, sub-folder of the programs folder)
+SECTIONS = (("The seed figures", "."), ("Demo programs", "demos"))
+
+
 def collect(folder):
-    progs = {p.stem: p for p in sorted(Path(folder).glob("*.py")) if not p.stem.startswith("_")}
-    order = [n for n in PROGRAMS if n in progs] + sorted(n for n in progs if n not in PROGRAMS)
+    """[(program path, figure dict, section title)] in gallery order."""
     out = []
-    for name in order:
-        figs = _figures_of(progs[name])
-        if figs:
-            out.extend((progs[name], f) for f in figs)
+    for title, sub in SECTIONS:
+        d = Path(folder) / sub
+        progs = {p.stem: p for p in sorted(d.glob("*.py")) if not p.stem.startswith("_")}
+        order = [n for n in PROGRAMS if n in progs] + sorted(n for n in progs
+                                                             if n not in PROGRAMS)
+        for name in order:
+            figs = _figures_of(progs[name])
+            if figs:
+                out.extend((progs[name], f, title) for f in figs)
     return out
 
 
@@ -57,10 +67,11 @@ def render(outdir, folder, only=None):
     outdir.mkdir(parents=True, exist_ok=True)
     items = collect(folder)
     if only:
-        items = [(p, f) for p, f in items if any(o in f"{p.stem}/{f['name']}" for o in only)]
+        items = [(p, f, s) for p, f, s in items
+                 if any(o in f"{p.stem}/{f['name']}" for o in only)]
     rows = []
     t0 = time.perf_counter()
-    for i, (prog, fig) in enumerate(items):
+    for i, (prog, fig, section) in enumerate(items):
         _bar(i, len(items), f"{prog.stem}: {fig['name']}", t0)
         t = time.perf_counter()
         err = None
@@ -69,12 +80,13 @@ def render(outdir, folder, only=None):
         except Exception as e:          # a broken figure must not stop the gallery
             img, err = None, f"{type(e).__name__}: {e}"
         dt = time.perf_counter() - t
-        fname = f"{prog.stem}__{fig['name']}.png"
+        fname = ("demos__" if prog.parent.name == "demos" else "") + \
+            f"{prog.stem}__{fig['name']}.png"
         if img is not None:
             write_png(outdir / fname, img)
         elif err is None:
             err = "the program opened no window"
-        rows.append((prog, fig, fname if img is not None else None, dt, err))
+        rows.append((prog, fig, fname if img is not None else None, dt, err, section))
     _bar(len(items), len(items), "done", t0)
     sys.stderr.write("\n")
     _index(outdir, rows, time.perf_counter() - t0)
@@ -87,14 +99,19 @@ def _index(outdir, rows, total):
              "figure{display:inline-block;margin:12px;vertical-align:top;max-width:660px}"
              "img{max-width:640px;border:1px solid #555}figcaption{font-size:14px}"
              ".err{color:#f88}</style></head><body>",
-             "<h1>IRIS VGX: the seed figures</h1>",
+             "<h1>IRIS VGX gallery</h1>",
              f"<p>{len(rows)} figures in {total:.1f} s.</p>"]
-    for prog, fig, fname, dt, err in rows:
+    section = None
+    for prog, fig, fname, dt, err, sec in rows:
+        if sec != section:
+            section = sec
+            parts.append(f"<h2>{html.escape(sec)}</h2>")
+        rel = ("demos/" if prog.parent.name == "demos" else "") + prog.name
         parts.append("<figure>")
         if fname:
             parts.append(f"<img src='{html.escape(fname)}' alt='{html.escape(fig['name'])}'>")
         parts.append(f"<figcaption><b>{html.escape(fig['caption'])}</b><br>"
-                     f"program <code>programs/{html.escape(prog.name)}</code> "
+                     f"program <code>programs/{html.escape(rel)}</code> "
                      f"{html.escape(' '.join(fig.get('args', [])))}; {dt:.2f} s")
         if err:
             parts.append(f"<br><span class='err'>failed: {html.escape(err)}</span>")
@@ -116,7 +133,7 @@ def main(argv=None):
     failed = [r for r in rows if r[4]]
     print(f"vgx-gallery: {len(rows) - len(failed)} of {len(rows)} figures -> "
           f"{Path(a.out) / 'index.html'}")
-    for prog, fig, _, _, err in failed:
+    for prog, fig, _, _, err, _ in failed:
         print(f"  failed: {prog.stem}/{fig['name']}: {err}", file=sys.stderr)
     return 1 if failed else 0
 

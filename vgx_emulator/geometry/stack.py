@@ -77,9 +77,20 @@ def frustum(l, r, b, t, n, f):
 
 
 def perspective(fovy_tenths, aspect, n, f):
-    """perspective(3G): fovy in tenths of degrees, aspect = width / height."""
-    t = n * math.tan(math.radians(fovy_tenths / 20.0))
-    return frustum(-t * aspect, t * aspect, -t, t, n, f)
+    """perspective(3G): fovy in tenths of degrees, aspect = width / height.
+
+    Written from cot(fovy/2) rather than through ``frustum``, so that
+    near = 0, which programs of the time passed (the man page says near is
+    "always positive" but lists no error), gives the degenerate matrix the
+    library computed: every z maps to the far end of the depth range."""
+    c = 1.0 / math.tan(math.radians(fovy_tenths / 20.0))
+    m = np.zeros((4, 4))
+    m[0, 0] = c / aspect
+    m[1, 1] = c
+    m[2, 2] = -(f + n) / (f - n)
+    m[2, 3] = -1.0
+    m[3, 2] = -2.0 * f * n / (f - n)
+    return m
 
 
 def _cross(a, b):
