@@ -16,7 +16,7 @@ from vgx_emulator.geometry.assemble import LINE
 from ._current import glcall, integer, machine, win
 
 __all__ = ["defbasis", "curvebasis", "curveprecision", "crv", "crvn", "rcrv", "rcrvn",
-           "patchbasis", "patchcurves", "patchprecision", "patch", "rpatch"]
+           "patchbasis", "patchcurves", "patchprecision", "patch", "rpatch", "curveit"]
 
 
 def _state():
@@ -180,3 +180,23 @@ def rpatch(gx, gy, gz, gw):
     ub, vb, uc, vc, up, vp = patch_setup("rpatch")
     coords = [_matrix("rpatch", g) for g in (gx, gy, gz, gw)]
     _draw_polylines("rpatch", C.patch_curves(ub, vb, coords, uc, vc, up, vp))
+
+
+@glcall
+def curveit(count):
+    """curveit(3G): iterate the current matrix as a forward-difference matrix
+    ``count`` times, drawing a line segment to its last row after each
+    iteration (rows i = 3..1: row i += row i-1).  The top of the ModelView
+    stack (MSINGLE: the single matrix) is iterated and the points go through
+    the projection; the strip starts at row 3, where the move(0, 0, 0) that
+    programs issue first puts the current point.  [S] the matrix itself is
+    left unchanged (the hardware iterated a copy)."""
+    n = integer("curveit", count, "count")
+    if not 0 <= n <= 32767:
+        fail("curveit", f"count {n}", "a count 0..32767 (a C short)")
+    w = win("curveit")
+    if n == 0:
+        return
+    mv, pr = w.st.matrices.vertex_matrices()
+    pts = C.forward_differences(mv, n)
+    machine.polyline_eye_vertices(w, LINE, pr, pts, "curveit")

@@ -1,36 +1,79 @@
-"""Event queue calls (reference section 13)."""
+"""Event queue and input devices (reference section 13,
+docs/windows-and-devices.md).
+
+Device numbers are checked against the partition of qenter(3G): qdevice,
+getbutton, getvaluator and tie take the devices SGI defines (buttons,
+valuators, pseudo devices); qenter also takes the program's own devices
+0x1000-0x7FFF.
+"""
+import errno
+
+import numpy as np
+
+from vgx_emulator import events as E
 from vgx_emulator.errors import fail
 
 from ._current import glcall, integer, machine
 
 __all__ = ["qdevice", "unqdevice", "qread", "qtest", "qenter", "qreset", "getvaluator",
-           "getbutton", "isqueued", "tie"]
+           "getbutton", "isqueued", "tie", "setvaluator", "getdev", "noise", "blkqread",
+           "qgetfd", "qcontrol"]
+
+_SGI = ("a device defined in device.h: buttons 1-255 and 3840-4095, "
+        "valuators 256-511, pseudo devices 512-767")
 
 
 def _device(call, dev):
+    """An SGI-defined device (qdevice(3G), qenter(3G) partition)."""
     d = integer(call, dev, "device")
-    if not 0 <= d <= 0xFFFF:
-        fail(call, f"device {d}", "a Device from device.h (0..65535)")
+    if not E.is_sgi_device(d):
+        fail(call, f"device {d} is not an SGI device", _SGI)
     return d
 
 
-@glcall
+def _button(call, dev):
+    d = integer(call, dev, "button")
+    if not E.is_button(d):
+        fail(call, f"device {d} is not a button", "buttons 1-255 and 3840-4095 (device.h)")
+    return d
+
+
+def _valuator(call, dev, null=False):
+    d = integer(call, dev, "valuator")
+    if null and d == 0:
+        return 0
+    if not E.is_valuator(d):
+        fail(call, f"device {d} is not a valuator",
+             "valuators 256-511 (device.h)" + (" or NULLDEV" if null else ""))
+    return d
+
+
+def _short(call, v, what):
+    v = integer(call, v, what)
+    if not -32768 <= v <= 32767:
+        fail(call, f"{what} {v} does not fit a short", "-32768..32767")
+    return v
+
+
+@glcall(immediate=True)
 def qdevice(dev):
     """qdevice(3G): queue events of this device."""
     machine.events.qdevice(_device("qdevice", dev))
 
 
-@glcall
+@glcall(immediate=True)
 def unqdevice(dev):
+    """unqdevice(3G): stop queueing the device (entries already queued stay)."""
     machine.events.unqdevice(_device("unqdevice", dev))
 
 
-@glcall
+@glcall(immediate=True)
 def isqueued(dev):
+    """isqueued(3G): TRUE if the device is queued."""
     return int(_device("isqueued", dev) in machine.events.queued)
 
 
-@glcall
+@glcall(immediate=True)
 def qread():
     """qread(3G): ``dev, val = qread()``; removes the first entry.  With the
     queue empty and no real window it ends the program (QueueExhausted, a
@@ -39,38 +82,150 @@ def qread():
     return machine.events.read()
 
 
-@glcall
+@glcall(immediate=True)
+def blkqread(data, n=None):
+    """blkqread(3G): read up to n/2 entries at once.  ``blkqread(n)`` returns
+    the list of (dev, val) pairs; ``blkqread(data, n)`` with a writable
+    numpy array fills it with dev, val, dev, val ... and returns the count
+    of 16-bit words read (twice the entries).  Blocks like qread."""
+    if n is None:
+        data, n = None, data
+    n = integer("blkqread", n, "n")
+    if n < 0:
+        fail("blkqread", f"n = {n}", "n >= 0 elements")
+    if data is not None:
+        if not isinstance(data, np.ndarray) or data.size < n:
+            fail("blkqread", "data is not a numpy array of n elements",
+                 "pass a writable array of at least n shorts, or blkqread(n)")
+    machine.flush()
+    pairs = machine.events.read_block(n)
+    if data is None:
+        return pairs
+    flat = data.reshape(-1)
+    for i, (d, v) in enumerate(pairs):
+        flat[2 * i], flat[2 * i + 1] = d, v
+    return 2 * len(pairs)
+
+
+@glcall(immediate=True)
 def qtest():
     """qtest(3G): the device of the first entry, or 0; the queue is unchanged."""
     return machine.events.test()
 
 
-@glcall
+@glcall(immediate=True)
 def qenter(dev, val):
-    """qenter(3G): append an entry, as the window system would."""
+    """qenter(3G): append an entry, as the window system would (a tied
+    button brings its valuators, tie(3G)).  Devices 1-0x7FFF."""
     v = integer("qenter", val, "value")
     if not -32768 <= v <= 65535:
         fail("qenter", f"value {v}", "a short")
-    machine.events.enter(_device("qenter", dev), v)
+    d = integer("qenter", dev, "device")
+    if not (E.is_sgi_device(d) or d in E.USER_RANGE):
+        fail("qenter", f"device {d} is outside the device space",
+             "SGI devices 1-767 and 3840-4095, your own 4096-32767 (qenter(3G))")
+    machine.events.enter(d, v)
 
 
-@glcall
+@glcall(immediate=True)
 def qreset():
+    """qreset(3G): empty the queue."""
     machine.events.reset()
 
 
-@glcall
+@glcall(immediate=True)
+def qgetfd():
+    """qgetfd(3G): the read file descriptor of the queue, for select(2): a
+    pipe that is readable while entries are queued."""
+    return machine.events.fd()
+
+
+@glcall(immediate=True)
+def qcontrol(cmd, icnt, idata, ocnt, odata=None):
+    """qcontrol(3G): queue administration for window managers and input
+    daemons.  There is neither headless, so every command is refused the
+    man page's way: ``-EINVAL`` (C's negative errno), nothing changed."""
+    integer("qcontrol", cmd, "cmd")
+    for c, a, what in ((icnt, idata, "idata"), (ocnt, odata, "odata")):
+        c = integer("qcontrol", c, f"count of {what}")
+        if c < 0 or (c and (a is None or len(a) < c)):
+            fail("qcontrol", f"{what} holds fewer than {c} elements",
+                 "counts must not exceed the arrays")
+    return -errno.EINVAL
+
+
+@glcall(immediate=True)
 def getvaluator(dev):
-    return machine.events.valuator(_device("getvaluator", dev))
+    """getvaluator(3G): the valuator's current value (0 for a valuator that
+    never reported); only valuators 256-511."""
+    return machine.events.valuator(_valuator("getvaluator", dev))
 
 
-@glcall
+@glcall(immediate=True)
 def getbutton(dev):
-    return machine.events.button(_device("getbutton", dev))
+    """getbutton(3G): the button's state, 0 or 1; only buttons."""
+    return machine.events.button(_button("getbutton", dev))
 
 
-@glcall
+@glcall(immediate=True)
+def getdev(n, devs, vals=None):
+    """getdev(3G): the values of n devices (buttons and valuators) at once.
+    ``vals = getdev(n, devs)`` returns a list; given a writable ``vals``
+    array it is filled in place."""
+    n = integer("getdev", n, "n")
+    if n < 0 or n > 128:
+        fail("getdev", f"n = {n}", "0..128 devices")
+    try:
+        if len(devs) < n:
+            fail("getdev", f"devs has {len(devs)} elements", f"it takes n = {n}")
+    except TypeError:
+        fail("getdev", "devs is not an array", "pass n devices")
+    ds = [integer("getdev", devs[i], "device") for i in range(n)]
+    for d in ds:
+        if not (E.is_button(d) or E.is_valuator(d)):
+            fail("getdev", f"device {d} is neither a button nor a valuator",
+                 "buttons 1-255, 3840-4095 and valuators 256-511")
+    if vals is not None and (not isinstance(vals, np.ndarray) or vals.size < n):
+        fail("getdev", "vals is not a numpy array of n elements", "pass n shorts or nothing")
+    ev = machine.events
+    out = [ev.button(d) if E.is_button(d) else ev.valuator(d) for d in ds]
+    if vals is None:
+        return out
+    vals.reshape(-1)[:n] = out
+    return None
+
+
+@glcall(immediate=True)
+def setvaluator(dev, init, vmin, vmax):
+    """setvaluator(3G): a valuator's value and range (vmin <= init <= vmax);
+    for MOUSEX/MOUSEY the cursor position.  Nothing is queued."""
+    d = _valuator("setvaluator", dev)
+    i, lo, hi = (_short("setvaluator", v, w)
+                 for v, w in ((init, "init"), (vmin, "vmin"), (vmax, "vmax")))
+    if not lo <= i <= hi:
+        fail("setvaluator", f"init {i} is outside [{lo}, {hi}]", "vmin <= init <= vmax")
+    machine.events.set_valuator(d, i, lo, hi)
+
+
+@glcall(immediate=True)
+def noise(dev, delta):
+    """noise(3G): a valuator's entry is queued only when it changed by at
+    least delta since its last queued entry (delta 1: every change)."""
+    d = _valuator("noise", dev)
+    n = _short("noise", delta, "delta")
+    if n < 1:
+        fail("noise", f"delta {n}", "delta >= 1")
+    machine.events.noise[d] = n
+
+
+@glcall(immediate=True)
 def tie(button, val1, val2):
-    """tie(3G): accepted; headless events come only from qenter."""
-    for d in (button, val1, val2):
-        _device("tie", d)
+    """tie(3G): while the button is queued, its entry is followed by the
+    current values of val1 then val2 (NULLDEV = none); both NULLDEV unties."""
+    b = _button("tie", button)
+    v1 = _valuator("tie", val1, null=True)
+    v2 = _valuator("tie", val2, null=True)
+    if v1 == 0 and v2 == 0:
+        machine.events.ties.pop(b, None)
+    else:
+        machine.events.ties[b] = (v1, v2)

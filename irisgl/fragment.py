@@ -60,7 +60,11 @@ def writemask(mask):
 
 @glcall
 def getwritemask():
-    return win("getwritemask").st.cmask
+    """getwritemask(3G): the writemask of the current drawmode's framebuffer;
+    in colour-map mode only its planes' bits (12, 8 in multimap mode)."""
+    from vgx_emulator.framebuffer.layers import index_bits
+    w = win("getwritemask")
+    return w.st.cmask & index_bits(w)
 
 
 @glcall

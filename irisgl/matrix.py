@@ -148,7 +148,10 @@ def rotate(a, ax):
 
 def _load_projection(call, m):
     w = win(call)
-    w.st.matrices.load_projection(m)
+    if machine.picking is not None and machine.picking.multiplies(w):
+        machine.picking.load_projection(w.st.matrices, m)   # times the pick matrix
+    else:
+        w.st.matrices.load_projection(m)
     machine.matrices_changed(w)
 
 
@@ -290,16 +293,26 @@ def popviewport():
     st.viewport, st.scrmask, st.depth_range = st.viewport_stack.pop()
 
 
+def _setdepth(call, near, far):
+    from vgx_emulator.framebuffer import ZMAX, ZMIN
+    n = min(max(integer(call, near, "near"), ZMIN), ZMAX)
+    f = min(max(integer(call, far, "far"), ZMIN), ZMAX)
+    w = win(call)
+    machine.state_change(w)
+    w.st.depth_range = (n, f)
+
+
 @glcall
 def lsetdepth(near, far):
     """lsetdepth(3G): window z of the near and far clip planes; values are
     clamped to GD_ZMIN..GD_ZMAX; near > far is allowed (reversed depth)."""
-    from vgx_emulator.framebuffer import ZMAX, ZMIN
-    n = min(max(integer("lsetdepth", near, "near"), ZMIN), ZMAX)
-    f = min(max(integer("lsetdepth", far, "far"), ZMIN), ZMAX)
-    w = win("lsetdepth")
-    machine.state_change(w)
-    w.st.depth_range = (n, f)
+    _setdepth("lsetdepth", near, far)
+
+
+@glcall
+def setdepth(near, far):
+    """setdepth(3G): the old Screencoord form of lsetdepth(3G)."""
+    _setdepth("setdepth", near, far)
 
 
 @glcall
@@ -308,5 +321,7 @@ def lgetdepth():
     return win("lgetdepth").st.depth_range
 
 
-setdepth = lsetdepth
-getdepth = lgetdepth
+@glcall
+def getdepth():
+    """getdepth(3G): the old form of lgetdepth(3G): ``near, far = getdepth()``."""
+    return win("getdepth").st.depth_range

@@ -18,14 +18,15 @@ from vgx_emulator import objects as O
 from vgx_emulator.errors import fail, warn
 
 from . import constants as K
-from ._current import IMMEDIATE, glcall, integer, machine, win
+from ._current import IMMEDIATE, glcall, integer, machine, num, win
 
 __all__ = ["makeobj", "closeobj", "callobj", "genobj", "isobj", "delobj", "editobj",
-           "maketag", "gentag", "istag", "objreplace", "objinsert", "objdelete", "getopenobj"]
+           "maketag", "gentag", "istag", "objreplace", "objinsert", "objdelete", "getopenobj",
+           "newtag", "deltag", "bbox2", "bbox2i", "bbox2s", "callfunc"]
 
 IMMEDIATE.update({
     "makeobj", "closeobj", "genobj", "isobj", "delobj", "editobj", "gentag", "istag",
-    "objreplace", "objinsert", "objdelete", "maketag", "getopenobj",
+    "objreplace", "objinsert", "objdelete", "maketag", "getopenobj", "newtag", "deltag",
     "winopen", "winclose", "winset", "winget", "prefsize", "prefposition", "keepaspect",
     "foreground", "noport", "winconstraints", "gbegin", "RGBmode", "cmode", "doublebuffer",
     "singlebuffer", "stensize", "acsize", "zbsize", "gconfig", "gexit", "ginit", "greset",
@@ -153,6 +154,9 @@ def _replay(obj, depth):
                 fn(*a)
         elif op[1] is callobj:
             _replay(integer("callobj", op[2][0], "object"), depth + 1)
+        elif op[1] in _BBOX:
+            if op[1](*op[2]):
+                return                # bbox2(3G): culled or pruned, the rest is skipped
         else:
             op[1](*op[2])
 
@@ -235,3 +239,91 @@ def objdelete(t1, t2):
         i, j = j, i
     del ob.items[i + 1:j]
     ob.cursor = min(ob.cursor, len(ob.items))
+
+
+@glcall
+def newtag(newtg, oldtg, offst):
+    """newtag(3G): tag ``newtg`` placed ``offst`` routines beyond tag
+    ``oldtg`` in the object open for editing (immediate).  [S] the offset
+    counts recorded calls, not tags; beyond the end of the object is an error."""
+    n = integer("newtag", newtg, "tag")
+    off = integer("newtag", offst, "offset")
+    ob, i = _tag_index("newtag", oldtg)
+    if n in (K.STARTTAG, K.ENDTAG) or any(it[0] == "tag" and it[1] == n for it in ob.items):
+        fail("newtag", f"tag {n} is already in object {machine.recording}",
+             "a new tag number (gentag)")
+    j = i + 1
+    seen = 0
+    while seen < off and j < len(ob.items):
+        if ob.items[j][0] == "call":
+            seen += 1
+        j += 1
+    if off < 0 or seen < off:
+        fail("newtag", f"offset {off} beyond tag {integer('newtag', oldtg, 'tag')}",
+             f"0..{seen} routines follow it")
+    ob.items.insert(j, ("tag", n))
+    if j <= ob.cursor:
+        ob.cursor += 1
+
+
+@glcall
+def deltag(t):
+    """deltag(3G): remove tag ``t`` from the object open for editing (the
+    routines stay); STARTTAG and ENDTAG cannot be deleted."""
+    if integer("deltag", t, "tag") in (K.STARTTAG, K.ENDTAG):
+        fail("deltag", "STARTTAG and ENDTAG cannot be deleted", "a tag made by maketag/newtag")
+    ob, i = _tag_index("deltag", t)
+    del ob.items[i]
+    if i < ob.cursor:
+        ob.cursor -= 1
+
+
+def _bbox(call, xmin, ymin, x1, y1, x2, y2):
+    """bbox2(3G) at replay: True when the box (x1, y1)-(x2, y2) at z = 0,
+    through the current matrices and viewport, lies wholly outside the
+    viewport (pruned) or is smaller than xmin by ymin pixels (culled).
+    [S] a box with a corner at or behind the eye (w <= 0) is never culled
+    by size; it is pruned only when every corner is behind the eye."""
+    sx = integer(call, xmin, "xmin")
+    sy = integer(call, ymin, "ymin")
+    c = [num(call, v, "corner") for v in (x1, y1, x2, y2)]
+    return O.bbox_culled(win(call).st, sx, sy, *c)
+
+
+@glcall
+def bbox2(xmin, ymin, x1, y1, x2, y2):
+    """bbox2(3G): in an object, skip the rest of the object when the box is
+    outside the viewport or smaller than xmin by ymin pixels (culling and
+    pruning); in immediate mode there is nothing to skip."""
+    return _bbox("bbox2", xmin, ymin, x1, y1, x2, y2)
+
+
+@glcall
+def bbox2i(xmin, ymin, x1, y1, x2, y2):
+    """bbox2i(3G): bbox2 with Icoord corners."""
+    return _bbox("bbox2i", xmin, ymin, x1, y1, x2, y2)
+
+
+@glcall
+def bbox2s(xmin, ymin, x1, y1, x2, y2):
+    """bbox2s(3G): bbox2 with Scoord corners."""
+    return _bbox("bbox2s", xmin, ymin, x1, y1, x2, y2)
+
+
+_BBOX = (bbox2, bbox2i, bbox2s)
+
+
+@glcall
+def callfunc(fctn, nargs, *args):
+    """callfunc(3G): call ``fctn`` with ``nargs`` arguments; compiled into an
+    object, the call happens each time the object is replayed.  [S] the
+    function is called as fctn(arg1, ..., argn) (Python has no varargs
+    count to pass); extra arguments beyond nargs are ignored, as C ignores
+    them."""
+    if not callable(fctn):
+        fail("callfunc", f"{fctn!r} is not a function", "pass a Python callable")
+    n = integer("callfunc", nargs, "nargs")
+    if n < 0 or n > len(args):
+        fail("callfunc", f"nargs {n} with {len(args)} arguments given",
+             "nargs <= the number of arguments that follow")
+    fctn(*args[:n])

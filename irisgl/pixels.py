@@ -10,7 +10,21 @@ __all__ = ["readsource", "lrectread", "rectread", "lrectwrite", "rectwrite", "re
            "rectzoom"]
 
 _SRC = {K.SRC_AUTO: "SRC_AUTO", K.SRC_FRONT: "SRC_FRONT", K.SRC_BACK: "SRC_BACK",
-        K.SRC_ZBUFFER: "SRC_ZBUFFER"}
+        K.SRC_ZBUFFER: "SRC_ZBUFFER",
+        # the pop-up, overlay and underlay banks (drawmode(3G)): colour indices
+        K.SRC_PUP: "SRC_PUP", K.SRC_OVER: "SRC_OVER", K.SRC_UNDER: "SRC_UNDER"}
+
+
+def _order(w, block):
+    """pixmode(3G) PM_TTOB / PM_RTOL: the array's rows run top to bottom,
+    its columns right to left (irisgl.system.pixmode keeps them)."""
+    pm = w.wm.get("pixmode")
+    if pm:
+        if pm.get(K.PM_TTOB):
+            block = block[::-1]
+        if pm.get(K.PM_RTOL):
+            block = block[:, ::-1]
+    return block
 
 
 @glcall
@@ -41,7 +55,7 @@ def lrectread(x1, y1, x2, y2, parray=None):
     if parray is not None and (not isinstance(parray, np.ndarray) or parray.size != n):
         fail("lrectread", "parray is not a numpy array of (x2-x1+1)*(y2-y1+1) elements",
              f"pass {n} elements or nothing")
-    block = machine.lrectread(w, x1, y1, x2, y2, w.readsource)
+    block = _order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource))
     if parray is None:
         return block if w.readsource == K.SRC_ZBUFFER else block.astype(np.uint32)
     parray.reshape(-1)[...] = block.reshape(-1).view(np.uint32).astype(parray.dtype, copy=False)
@@ -59,7 +73,7 @@ def rectread(x1, y1, x2, y2, parray=None):
     if parray is not None and (not isinstance(parray, np.ndarray) or parray.size != n):
         fail("rectread", "parray is not a numpy array of (x2-x1+1)*(y2-y1+1) elements",
              f"pass {n} elements or nothing")
-    block = (machine.lrectread(w, x1, y1, x2, y2, w.readsource).astype(np.int64)
+    block = (_order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource)).astype(np.int64)
              & 0xFFFF).astype(np.uint16)
     if parray is None:
         return block
@@ -80,7 +94,8 @@ def _write(call, x1, y1, x2, y2, parray, dtype):
         fail(call, "parray is not an array of integers", f"{h * wd} pixel words")
     if words.size != h * wd:
         fail(call, f"parray has {words.size} elements", f"(x2-x1+1)*(y2-y1+1) = {h * wd}")
-    machine.write_pixels(w, x1, y1, words.reshape(h, wd).astype(np.uint32), w.st.zoom)
+    machine.write_pixels(w, x1, y1, _order(w, words.reshape(h, wd)).astype(np.uint32),
+                         w.st.zoom)
 
 
 @glcall

@@ -155,12 +155,20 @@ def cpack(word):
 @_export
 @glcall(inside=True)
 def color(index):
-    """color(3G): colour-map index (12 bits on the VGX); an error in RGB mode."""
+    """color(3G): colour index of the current drawmode's framebuffer, clamped
+    to 0..2**getplanes()-1 (below 0 is undefined: 0 here, [S]); an error in
+    RGB mode."""
     w = win("color")
     i = integer("color", index, "colour index")
     if w.st.rgb:
         fail("color", "colour index in RGB mode", "use RGBcolor/cpack/c3f in RGBmode")
-    machine.set_colour(w, (float(i & 0xFFF), 0.0, 0.0, 0.0))
+    machine.set_colour(w, (float(min(max(i, 0), color_limit(w))), 0.0, 0.0, 0.0))
+
+
+def color_limit(w):
+    """The largest colour index of the current drawmode (color(3G))."""
+    from vgx_emulator.framebuffer.layers import planes
+    return (1 << planes(w)) - 1
 
 
 # -- old-style primitives ------------------------------------------------------
@@ -304,7 +312,7 @@ def getsm():
 @glcall
 def getcolor():
     st = win("getcolor").st
-    return int(st.colour[0]) if not st.rgb else 0
+    return int(st.colour[0] + 0.5) if not st.rgb else 0     # colorf: the index written
 
 
 @_export

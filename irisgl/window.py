@@ -7,35 +7,27 @@ doublebuffer, singlebuffer, stensize, acsize) take effect at gconfig, which
 creates the banks they ask for.
 """
 from vgx_emulator import config
+from vgx_emulator.gdesc import VALUES
 from vgx_emulator.errors import fail
 from vgx_emulator.framebuffer import ZMAX, ZMIN
 
 from . import constants as K
-from ._current import glcall, integer, machine, win, boolean
+from ._current import HEADLESS, boolean, glcall, integer, machine, win
 
 __all__ = ["winopen", "winclose", "winset", "winget", "prefsize", "prefposition",
            "keepaspect", "getsize", "getorigin", "RGBmode", "cmode", "singlebuffer",
            "doublebuffer", "stensize", "acsize", "zbsize", "gconfig", "getgconfig",
            "getdisplaymode", "getplanes", "swapbuffers", "frontbuffer", "backbuffer",
            "getgdesc", "gexit", "ginit", "greset", "gflush", "finish", "foreground",
-           "noport", "winconstraints", "gbegin"]
+           "noport", "winconstraints", "gbegin", "monobuffer",
+           "minsize", "maxsize", "stepunit", "fudge", "noborder", "iconsize",
+           "imakebackground", "wintitle", "icontitle", "winpop", "winpush", "windepth",
+           "winposition", "winmove", "winattach", "swinopen", "getport", "ismex",
+           "fullscrn", "endfullscrn", "getwscrn", "scrnselect", "scrnattach"]
 
-#: getgdesc(3G) on the emulated VGX (reference section 4, Decision 12).
-GDESC = {
-    K.GD_XPMAX: config.SCREEN_WIDTH, K.GD_YPMAX: config.SCREEN_HEIGHT,
-    K.GD_XMMAX: 360, K.GD_YMMAX: 290, K.GD_ZMIN: ZMIN, K.GD_ZMAX: ZMAX,
-    K.GD_BITS_NORM_SNG_RED: 8, K.GD_BITS_NORM_SNG_GREEN: 8, K.GD_BITS_NORM_SNG_BLUE: 8,
-    K.GD_BITS_NORM_DBL_RED: 8, K.GD_BITS_NORM_DBL_GREEN: 8, K.GD_BITS_NORM_DBL_BLUE: 8,
-    K.GD_BITS_NORM_SNG_CMODE: 12, K.GD_BITS_NORM_DBL_CMODE: 12,
-    K.GD_BITS_NORM_SNG_MMAP: 8, K.GD_BITS_NORM_DBL_MMAP: 8,
-    K.GD_BITS_NORM_ZBUFFER: 24, K.GD_BITS_NORM_SNG_ALPHA: 8, K.GD_BITS_NORM_DBL_ALPHA: 8,
-    K.GD_BLEND: 1, K.GD_LOGICOP: 1, K.GD_DITHER: 1, K.GD_AFUNCTION: 1,
-    K.GD_NVERTEX_POLY: config.MAX_POLYGON_VERTICES, K.GD_PATSIZE_64: 1,
-    K.GD_READSOURCE: 1, K.GD_READSOURCE_ZBUFFER: 1, K.GD_ZDRAW_GEOM: 1,
-    K.GD_ZDRAW_PIXELS: 1, K.GD_BITS_ACBUF: 16, K.GD_BITS_ACBUF_HW: 0,
-    K.GD_BITS_STENCIL: 8, K.GD_TEXTURE: 1, K.GD_TEXTURE_PERSP: 0,
-    K.GD_CLIPPLANES: 6, K.GD_LIGHTING_TWOSIDE: 1, K.GD_STEREO: 0,
-}
+#: getgdesc(3G) on the emulated VGX: every inquiry, each value with its
+#: source (vgx_emulator/gdesc.py)
+GDESC = VALUES
 
 
 @glcall
@@ -90,9 +82,11 @@ def prefposition(x1, x2, y1, y2):
     machine.pref["size"] = (x2 - x1 + 1, y2 - y1 + 1)
 
 
-@glcall
+@glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
 def keepaspect(x, y):
-    """keepaspect(3G): recorded; a headless window is never resized."""
+    """keepaspect(3G): aspect ratio constraint for the next winopen (or for
+    the current window at winconstraints); kept, a headless window is never
+    reshaped by a user."""
     x = integer("keepaspect", x)
     y = integer("keepaspect", y)
     if x <= 0 or y <= 0:
@@ -100,24 +94,40 @@ def keepaspect(x, y):
     machine.pref["aspect"] = (x, y)
 
 
-@glcall
+@glcall(immediate=True)
 def foreground():
     """foreground(3G): accepted; there is no shell to detach from."""
+    machine.pref["foreground"] = True
 
 
-@glcall
+@glcall(immediate=True)
 def noport():
-    """noport(3G): accepted (the next winopen still gets a window)."""
+    """noport(3G): kept (wm["noport"]); the next winopen still gets a window
+    so that colour-map programs can run headless."""
+    machine.pref["noport"] = True
 
 
-@glcall
+@glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
 def winconstraints():
-    """winconstraints(3G): accepted; headless windows are not reshaped."""
+    """winconstraints(3G): bind the constraints given since winopen
+    (minsize, maxsize, keepaspect, stepunit, fudge, prefsize, prefposition)
+    to the current window; prefposition/prefsize also reshape it there."""
+    w = win("winconstraints")
+    pref = dict(machine.pref)
+    machine.pref = {}
+    if "origin" in pref or "size" in pref:
+        x, y = pref.get("origin", w.origin)
+        wd, ht = pref.get("size", (w.width, w.height))
+        _reshape(w, x, y, wd, ht)
+    for k in ("origin", "size"):
+        pref.pop(k, None)
+    w.wm.update(pref)
 
 
+@glcall(immediate=True)
 def gbegin():
-    """gbegin(3G): old form of ginit."""
-    ginit()
+    """gbegin(3G): as ginit, except that the colour map is left as it is."""
+    _fullscreen_window("gbegin")
 
 
 @glcall
@@ -215,8 +225,11 @@ def getdisplaymode():
 
 @glcall
 def getplanes():
-    """getplanes(3G): 24 in RGB mode, 12 in colour-map mode (VGX)."""
-    return 24 if win("getplanes").st.rgb else 12
+    """getplanes(3G): planes of the current drawmode: 24 in RGB mode, 12 in
+    colour-map mode (8 in multimap mode); pop-up/overlay/underlay their
+    planes; 0 in CURSORDRAW (VGX)."""
+    from vgx_emulator.framebuffer.layers import planes
+    return planes(win("getplanes"))
 
 
 @glcall
@@ -238,14 +251,25 @@ def finish():
     machine.frame_end(win("finish"))
 
 
+@glcall(immediate=True)
+def monobuffer():
+    """monobuffer(3G): ask for a monoscopic configuration at gconfig.  The
+    VGX has no stereo buffers (getgdesc(GD_STEREO) is 0), so mono is the
+    only configuration and the request changes nothing; stereobuffer(3G)
+    raises GLError."""
+    win("monobuffer")
+
+
 @glcall
 def frontbuffer(b):
     """frontbuffer(3G): enable drawing into the front buffer (double-buffer
-    mode only; ignored single-buffered)."""
+    mode; single-buffered it can be disabled only while zdraw is on, zdraw(3G))."""
     w = win("frontbuffer")
     v = boolean("frontbuffer", b)
     machine.state_change(w)
     if w.st.double:
+        w.st.front_enabled = v
+    elif w.st.zdraw or v:
         w.st.front_enabled = v
 
 
@@ -273,11 +297,21 @@ def gexit():
     machine.gexit()
 
 
-@glcall
+@glcall(immediate=True)
 def ginit():
-    """ginit(3G): initialise graphics; the colour map returns to its default."""
+    """ginit(3G): initialise graphics: the whole 1280x1024 screen becomes the
+    (current) window, in its initial state (colour map mode, single buffer);
+    the colour map returns to its default."""
     from vgx_emulator.display import default_colormap
+    _fullscreen_window("ginit")
     machine.colormap[:] = default_colormap()
+
+
+def _fullscreen_window(name):
+    machine.pref["origin"] = (0, 0)
+    machine.pref["size"] = (config.SCREEN_WIDTH, config.SCREEN_HEIGHT)
+    machine.winopen(name)
+    machine.current.wm["border"] = False
 
 
 @glcall
@@ -289,6 +323,8 @@ def greset():
     from vgx_emulator.state import WindowState
     w = win("greset")
     machine.state_change(w)
+    from vgx_emulator.framebuffer import layers
+    layers.switch(w.st, layers.NORMALDRAW)      # the normal framebuffer's modes (drawmode(3G))
     old = w.st
     st = WindowState(w.width, w.height)
     st.rgb, st.double = old.rgb, old.double
@@ -299,3 +335,262 @@ def greset():
     w.st = st
     machine.matrices_changed(w)
     machine.colormap[:] = default_colormap()
+
+
+# -- window-manager requests (reference section 13, docs/windows-and-devices.md) ------
+def _pos(call, x, y, what):
+    x = integer(call, x, f"{what} x")
+    y = integer(call, y, f"{what} y")
+    if x <= 0 or y <= 0:
+        fail(call, f"{what} {x}x{y}", "positive sizes")
+    return x, y
+
+
+@glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
+def minsize(x, y):
+    """minsize(3G): smallest size the user may give the window (next winopen,
+    or the current window at winconstraints); kept."""
+    machine.pref["minsize"] = _pos("minsize", x, y, "size")
+
+
+@glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
+def maxsize(x, y):
+    """maxsize(3G): largest size the user may give the window; kept."""
+    machine.pref["maxsize"] = _pos("maxsize", x, y, "size")
+
+
+@glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
+def stepunit(xunit, yunit):
+    """stepunit(3G): the window is reshaped in steps of xunit x yunit; kept."""
+    machine.pref["stepunit"] = _pos("stepunit", xunit, yunit, "unit")
+
+
+@glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
+def fudge(xfudge, yfudge):
+    """fudge(3G): border allowance added to stepunit/keepaspect sizes; kept."""
+    x = integer("fudge", xfudge)
+    y = integer("fudge", yfudge)
+    if x < 0 or y < 0:
+        fail("fudge", f"fudge {x}, {y}", "x >= 0, y >= 0")
+    machine.pref["fudge"] = (x, y)
+
+
+@glcall(immediate=True, status=HEADLESS, why="borders are drawn by a window manager")
+def noborder():
+    """noborder(3G): the next window has no border; kept (wm["border"])."""
+    machine.pref["border"] = False
+
+
+@glcall(immediate=True, status=HEADLESS, why="icons exist only on a display")
+def iconsize(x, y):
+    """iconsize(3G): size of the next window's icon; kept."""
+    machine.pref["iconsize"] = _pos("iconsize", x, y, "icon size")
+
+
+@glcall(immediate=True)
+def imakebackground():
+    """imakebackground(3G): the next window is the screen background: the
+    whole screen, no border, drawn again on REDRAW."""
+    machine.pref["origin"] = (0, 0)
+    machine.pref["size"] = (config.SCREEN_WIDTH, config.SCREEN_HEIGHT)
+    machine.pref["border"] = False
+    machine.pref["background"] = True
+
+
+@glcall(immediate=True, status=HEADLESS, why="titles are drawn by a window manager")
+def wintitle(name):
+    """wintitle(3G): the current window's title; kept (wm["title"])."""
+    win("wintitle").wm["title"] = str(name)
+
+
+@glcall(immediate=True, status=HEADLESS, why="icons exist only on a display")
+def icontitle(name):
+    """icontitle(3G): the title of the current window's icon; kept."""
+    win("icontitle").wm["icontitle"] = str(name)
+
+
+@glcall(immediate=True, status=HEADLESS, why="stacking is visible only on a display")
+def winpop():
+    """winpop(3G): the current window goes in front of the others."""
+    w = win("winpop")
+    machine.stacking.remove(w.gid)
+    machine.stacking.append(w.gid)
+
+
+@glcall(immediate=True, status=HEADLESS, why="stacking is visible only on a display")
+def winpush():
+    """winpush(3G): the current window goes behind the others."""
+    w = win("winpush")
+    machine.stacking.remove(w.gid)
+    machine.stacking.insert(0, w.gid)
+
+
+@glcall(immediate=True)
+def windepth(gid):
+    """windepth(3G): a number comparing the window's place in the stack with
+    the program's other windows: 1 for the front one, larger further back
+    (the man page fixes only that the numbers compare)."""
+    g = _gid("windepth", gid)
+    return len(machine.stacking) - machine.stacking.index(g)
+
+
+def _top(w):
+    """The top-level window a (sub)window is placed in."""
+    while w.parent is not None and w.parent in machine.windows:
+        w = machine.windows[w.parent]
+    return w
+
+
+def _place_children(w):
+    """Subwindows keep their origin relative to the moved parent (swinopen(3G))."""
+    for c in machine.windows.values():
+        if c.parent == w.gid:
+            machine.state_change(c)
+            c.origin = (w.origin[0] + c.offset[0], w.origin[1] + c.offset[1])
+            _place_children(c)
+
+
+def _reshape(w, x, y, width, height):
+    """Move/reshape a window as the window system would; REDRAW when its
+    size changes."""
+    machine.state_change(w)
+    resized = (width, height) != (w.width, w.height)
+    w.resize(x, y, width, height)
+    if w.parent is not None and w.parent in machine.windows:
+        p = _top(w)
+        w.offset = (x - p.origin[0], y - p.origin[1])
+    _place_children(w)
+    if resized:
+        machine.events.post(K.REDRAW, w.gid, coalesce=True)
+
+
+@glcall(immediate=True)
+def winposition(x1, x2, y1, y2):
+    """winposition(3G): move and reshape the current window to the screen
+    rectangle x1..x2, y1..y2 (corners in either order; a subwindow's are
+    relative to its parent's origin).  The banks are rebuilt at the new
+    size and REDRAW is queued."""
+    w = win("winposition")
+    x1, x2, y1, y2 = (integer("winposition", v) for v in (x1, x2, y1, y2))
+    xa, xb, ya, yb = min(x1, x2), max(x1, x2), min(y1, y2), max(y1, y2)
+    if w.parent is not None and w.parent in machine.windows:
+        p = _top(w)
+        xa, xb, ya, yb = xa + p.origin[0], xb + p.origin[0], ya + p.origin[1], yb + p.origin[1]
+    wd, ht = xb - xa + 1, yb - ya + 1
+    if wd > 2 * config.SCREEN_WIDTH or ht > 2 * config.SCREEN_HEIGHT:
+        fail("winposition", f"a {wd}x{ht} window", "at most twice the screen each way")
+    _reshape(w, xa, ya, wd, ht)
+
+
+@glcall(immediate=True)
+def winmove(orgx, orgy):
+    """winmove(3G): move the current window's lower-left corner to
+    (orgx, orgy) on the screen (a subwindow: relative to its parent)."""
+    w = win("winmove")
+    x = integer("winmove", orgx)
+    y = integer("winmove", orgy)
+    if w.parent is not None and w.parent in machine.windows:
+        p = _top(w)
+        x, y = x + p.origin[0], y + p.origin[1]
+    _reshape(w, x, y, w.width, w.height)
+
+
+@glcall(immediate=True)
+def winattach():
+    """winattach(3G): input focus to the current window; returns the id of
+    the window that had it (INPUTCHANGE is queued for the new one)."""
+    w = win("winattach")
+    old = machine.system.get("focus", w.gid)
+    machine.system["focus"] = w.gid
+    if old != w.gid:
+        machine.events.post(K.INPUTCHANGE, w.gid)
+    return old
+
+
+@glcall(immediate=True)
+def swinopen(parent):
+    """swinopen(3G): a subwindow of ``parent``: a window of its own (own
+    banks and state) whose origin stays fixed relative to the parent's; it
+    becomes current.  Placed by winposition relative to the parent (before
+    that: the parent's rectangle, our choice)."""
+    p = machine.windows.get(_gid("swinopen", parent))
+    top = _top(p)
+    machine.pref = {"origin": top.origin, "size": (top.width, top.height)}
+    gid = machine.winopen("")
+    w = machine.windows[gid]
+    w.parent = top.gid
+    w.offset = (0, 0)
+    w.wm["border"] = False
+    return gid
+
+
+@glcall(immediate=True)
+def getport(name=""):
+    """getport(3G): the GL2 form of winopen: initialise graphics and open a
+    window by the constraints given before it; returns its id."""
+    return machine.winopen(str(name))
+
+
+@glcall(immediate=True)
+def ismex():
+    """ismex(3G): TRUE: the emulated VGX runs a window system (4Sight,
+    which answered for mex), so programs take their windowed path."""
+    return 1
+
+
+@glcall(immediate=True)
+def fullscrn():
+    """fullscrn(3G): the program may draw on the whole screen: headless the
+    current window becomes the 1280x1024 screen at (0, 0), with
+    viewport(0, 1279, 0, 1023) and the matching ortho2.  The old viewport
+    and matrices are not saved (the man page leaves that to the caller)."""
+    from .matrix import ortho2, viewport
+    w = win("fullscrn")
+    if w.saved_geometry is None:
+        w.saved_geometry = (w.origin[0], w.origin[1], w.width, w.height)
+    _reshape(w, 0, 0, config.SCREEN_WIDTH, config.SCREEN_HEIGHT)
+    viewport(0, config.SCREEN_WIDTH - 1, 0, config.SCREEN_HEIGHT - 1)
+    ortho2(-0.5, config.SCREEN_WIDTH - 0.5, -0.5, config.SCREEN_HEIGHT - 0.5)
+
+
+@glcall(immediate=True)
+def endfullscrn():
+    """endfullscrn(3G): end fullscrn: the window returns to its place and
+    size (viewport and matrices stay as the program left them)."""
+    w = win("endfullscrn")
+    if w.saved_geometry is None:
+        return
+    x, y, wd, ht = w.saved_geometry
+    w.saved_geometry = None
+    _reshape(w, x, y, wd, ht)
+
+
+@glcall(immediate=True)
+def getwscrn():
+    """getwscrn(3G): the screen of the current window: 0 (one screen)."""
+    win("getwscrn")
+    return 0
+
+
+def _screen(gsnr, focus=False):
+    try:
+        g = int(gsnr)
+    except (TypeError, ValueError):
+        return None
+    if g == 0 or (focus and g == K.INFOCUSSCRN):
+        return g
+    return None
+
+
+@glcall(immediate=True)
+def scrnselect(gsnr):
+    """scrnselect(3G): the screen new windows go to; the VGX has one
+    (GD_NSCRNS 1): returns the previous screen 0, or -1 for any other."""
+    return -1 if _screen(gsnr) is None else 0
+
+
+@glcall(immediate=True)
+def scrnattach(gsnr):
+    """scrnattach(3G): input focus to a screen: returns the screen that had
+    it (0), or -1 for a screen that does not exist; INFOCUSSCRN asks."""
+    return -1 if _screen(gsnr, focus=True) is None else 0

@@ -6,9 +6,11 @@ PNG output, the error mode.
 from .errors import GLError, VGXWarning, error_mode, set_error_mode
 from .machine import VGX
 from .runner import run_program
+from . import menus
+from .menus import script as script_menus
 
 __all__ = ["VGX", "GLError", "VGXWarning", "run_program", "save_png", "machine",
-           "set_error_mode", "error_mode", "window_image"]
+           "set_error_mode", "error_mode", "window_image", "menus", "script_menus"]
 
 
 def machine():

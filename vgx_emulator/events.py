@@ -1,11 +1,19 @@
-"""The device queue behind qdevice/qread/qtest/qenter (reference section 13).
+"""The device queue behind qdevice/qread/qtest/qenter, and the input devices
+it reports (reference section 13, docs/windows-and-devices.md).
 
 The queue holds 101 entries; a full queue drops the event and queues QFULL.
 With no real window to wait on, a ``qread`` on an empty queue cannot block
 forever: it raises :class:`QueueExhausted`, a ``SystemExit`` with code 0, so
 a ported program ends cleanly (porting conventions 4) and the runner, which
 catches it, saves what the program drew.
+
+Device numbers follow the partition of qenter(3G): SGI buttons 0x0001-0x00FF
+and 0x0F00-0x0FFF, valuators 0x0100-0x01FF, pseudo devices 0x0200-0x02FF;
+0x1000-0x7FFF are the program's own devices (qenter only); 0x8000 and up
+cannot be used.  A button tied to valuators (tie(3G)) queues its entry and
+then the valuators' current values as one group.
 """
+import os
 from collections import deque
 
 from . import config
@@ -15,7 +23,27 @@ REDRAW = 528
 INPUTCHANGE = 534
 MOUSEX, MOUSEY = 266, 267
 BUTTON_RANGE = range(1, 256)
+EXTRA_BUTTON_RANGE = range(0xF00, 0x1000)
 VALUATOR_RANGE = range(256, 512)
+PSEUDO_RANGE = range(512, 768)
+USER_RANGE = range(0x1000, 0x8000)
+USER_BUTTON_RANGE = range(0x1000, 0x3000)
+USER_VALUATOR_RANGE = range(0x3000, 0x4000)
+
+#: the valuators' power-on ranges: the mouse spans the screen (setvaluator(3G))
+_SCREEN = (config.SCREEN_WIDTH - 1, config.SCREEN_HEIGHT - 1)
+
+
+def is_button(dev):
+    return dev in BUTTON_RANGE or dev in EXTRA_BUTTON_RANGE
+
+
+def is_valuator(dev):
+    return dev in VALUATOR_RANGE
+
+
+def is_sgi_device(dev):
+    return is_button(dev) or is_valuator(dev) or dev in PSEUDO_RANGE
 
 
 class QueueExhausted(SystemExit):
@@ -27,6 +55,7 @@ class QueueExhausted(SystemExit):
 
 class EventQueue:
     def __init__(self):
+        self._fd = None
         self.reset_all()
 
     def reset_all(self):
@@ -34,25 +63,53 @@ class EventQueue:
         self.entries = deque()
         self.buttons = {}
         self.valuators = {MOUSEX: 0, MOUSEY: 0}
+        # setvaluator(3G): dev -> (min, max); the mouse spans the screen
+        self.ranges = {MOUSEX: (0, _SCREEN[0]), MOUSEY: (0, _SCREEN[1])}
+        self.ties = {}                 # tie(3G): button -> (v1, v2), NULLDEV = 0
+        self.noise = {}                # noise(3G): valuator -> delta
+        self.last_queued = {}          # valuator -> value of its last queued entry
         self.wait_hook = None          # called when qread would block
+        self._close_fd()
 
+    # -- qdevice ------------------------------------------------------------
     def qdevice(self, dev):
         self.queued.add(dev)
 
     def unqdevice(self, dev):
         self.queued.discard(dev)
 
+    # -- entering events ----------------------------------------------------
     def enter(self, dev, val):
-        """Append an entry; the device state follows what is queued."""
-        if dev in BUTTON_RANGE:
+        """Append an entry (qenter, or the window system); the device state
+        follows what is entered.  A tied button brings its valuators'
+        current values right after it, as one group; a valuator with a
+        noise threshold is queued only when it moved at least that much."""
+        if is_button(dev):
             self.buttons[dev] = 1 if val else 0
-        elif dev in VALUATOR_RANGE:
+        elif is_valuator(dev):
             self.valuators[dev] = val
-        if len(self.entries) >= config.QUEUE_LENGTH:
-            if not self.entries or self.entries[-1][0] != QFULL:
+            delta = self.noise.get(dev, 1)
+            last = self.last_queued.get(dev)
+            if delta > 1 and last is not None and abs(val - last) < delta:
+                return
+            self.last_queued[dev] = val
+        group = [(dev, val)]
+        if dev in self.ties and dev in self.queued:
+            for v in self.ties[dev]:
+                if v:
+                    group.append((v, self.valuator(v)))
+        self._append(group)
+
+    def _append(self, group):
+        """Queue a group of entries whole, or (no room) drop it and queue QFULL."""
+        was_empty = not self.entries
+        if len(self.entries) + len(group) > config.QUEUE_LENGTH:
+            if self.entries and self.entries[-1][0] != QFULL:
                 self.entries[-1] = (QFULL, 0)
             return
-        self.entries.append((dev, val))
+        self.entries.extend(group)
+        if was_empty:
+            self._signal()
 
     def post(self, dev, val, coalesce=False):
         """A system event (REDRAW, INPUTCHANGE): queued only if the device is
@@ -63,21 +120,80 @@ class EventQueue:
             return
         self.enter(dev, val)
 
-    def read(self):
+    # -- reading ------------------------------------------------------------
+    def _wait(self):
         if not self.entries and self.wait_hook is not None:
             self.wait_hook()
         if not self.entries:
             raise QueueExhausted()
-        return self.entries.popleft()
+
+    def read(self):
+        self._wait()
+        e = self.entries.popleft()
+        if not self.entries:
+            self._drain()
+        return e
+
+    def read_block(self, n):
+        """blkqread(3G): up to n // 2 entries (blocks like qread while empty)."""
+        self._wait()
+        out = []
+        while self.entries and len(out) < n // 2:
+            out.append(self.entries.popleft())
+        if not self.entries:
+            self._drain()
+        return out
 
     def test(self):
         return self.entries[0][0] if self.entries else 0
 
     def reset(self):
         self.entries.clear()
+        self._drain()
 
     def valuator(self, dev):
         return int(self.valuators.get(dev, 0))
 
     def button(self, dev):
         return int(self.buttons.get(dev, 0))
+
+    def set_valuator(self, dev, init, vmin, vmax):
+        """setvaluator(3G): the device's value and range (no entry queued)."""
+        self.ranges[dev] = (vmin, vmax)
+        self.valuators[dev] = init
+
+    # -- qgetfd: a pipe readable while entries are queued -------------------
+    def fd(self):
+        """The read end of a pipe that holds one byte while the queue is not
+        empty, so select(2) on it wakes when events arrive (qgetfd(3G))."""
+        if self._fd is None:
+            r, w = os.pipe()
+            os.set_blocking(r, False)
+            self._fd = (r, w)
+            if self.entries:
+                self._signal()
+        return self._fd[0]
+
+    def _signal(self):
+        if self._fd is not None:
+            os.write(self._fd[1], b"\1")
+
+    def _drain(self):
+        if self._fd is not None:
+            try:
+                while os.read(self._fd[0], 64):
+                    pass
+            except BlockingIOError:
+                pass
+
+    def __del__(self):
+        self._close_fd()
+
+    def _close_fd(self):
+        if self._fd is not None:
+            for f in self._fd:
+                try:
+                    os.close(f)
+                except OSError:
+                    pass
+            self._fd = None

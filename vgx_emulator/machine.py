@@ -17,7 +17,8 @@ from . import config, display, geometry, scan
 from .errors import fail
 from .events import INPUTCHANGE, REDRAW, EventQueue
 from .framebuffer import ZMAX, ZMIN, Framebuffer
-from .geometry import lighting, stack
+from .framebuffer import layers
+from .geometry import lighting, scrbox, stack
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
 from .geometry.batch import CLASS_OF, FILLED, VertexBatch
 from .raster import blend, fragment
@@ -31,6 +32,7 @@ from .state import WindowState
 KIND_NAMES = {POLYGON: "polygon", TMESH: "tmesh", QSTRIP: "qstrip", LINE: "line",
               CLOSEDLINE: "closedline", POINT: "point"}
 SRC_AUTO, SRC_FRONT, SRC_BACK, SRC_ZBUFFER = 0, 1, 2, 3
+_SRC_LAYER = {4: layers.PUPDRAW, 5: layers.OVERDRAW, 6: layers.UNDERDRAW}   # SRC_PUP/OVER/UNDER
 
 _DUMMY_C = np.zeros((1, 1), np.uint32)
 _DUMMY_Z = np.zeros((1, 1), np.int32)
@@ -52,6 +54,38 @@ class Window:
         self.batch = VertexBatch()
         self.readsource = SRC_AUTO
         self.frames = 0
+        # window-manager state (irisgl.window): title, constraints, border...
+        self.wm = {"title": name}
+        self.parent = None             # swinopen: the parent window's gid
+        self.offset = (0, 0)           # swinopen: origin relative to the parent
+        self.saved_geometry = None     # fullscrn: (x, y, w, h) to restore
+        self.attrib_stack = []         # pushattributes(3G)
+
+    def resize(self, x, y, width, height):
+        """Move and reshape (winposition, fullscrn): the banks are rebuilt at
+        the new size in the same configuration, keeping the overlapping
+        pixels anchored at the lower-left corner (what is outside is 0, the
+        man pages leave it undefined).  Viewport and matrices are kept: a
+        program reissues them (reshapeviewport) on the REDRAW that follows."""
+        self.origin = (x, y)
+        if (width, height) == (self.width, self.height):
+            return
+        old = self.fb
+        fb = Framebuffer(width, height)
+        fb.configure(old.back is not None, old.stencil_planes, old.accum is not None)
+        if old.z is not None:
+            fb.ensure_z()
+        h, w = min(height, self.height), min(width, self.width)
+        for name in ("front", "back", "z", "stencil", "accum"):
+            a, b = getattr(old, name), getattr(fb, name)
+            if a is not None and b is not None:
+                b[:h, :w] = a[:h, :w]
+        fb.layer_planes = dict(old.layer_planes)       # pop-up/overlay/underlay (layers.py)
+        for mode, a in old.layers.items():
+            fb.layer(mode)[:h, :w] = a[:h, :w]
+        fb.z_written()
+        self.fb = fb
+        self.width, self.height = width, height
 
 
 class VGX:
@@ -75,8 +109,18 @@ class VGX:
         self.environments = {}         # tevdef: index -> Environment
         self.curve_state = None        # defbasis/curvebasis/patch* settings (irisgl.curves)
         self.patterns = {}             # defpattern: index -> (size, bits (size, size) uint8)
+        self.fonts = {}                # defrasterfont/deflfont/loadXfont: n -> RasterFont
+        from .menus import MenuTable
+        self.menus = MenuTable()       # defpup/newpup menus and scripted dopup answers
+        self.linestyles = {0: 0xFFFF}  # deflinestyle: index -> 16-bit pattern (all windows)
         self.frame_hook = None         # runner: called at each frame end
         self.last_image = None         # what the last closed window showed
+        self.picking = None            # pick/gselect session (vgx_emulator/picking.py)
+        self.picksize = (10, 10)       # picksize(3G)
+        self.stacking = []             # gids, back to front (winpop/winpush)
+        self.system = {}               # irisgl.system / cursor state (bell, lamps, video ...)
+        self.gamma = None              # gammaramp(3G): (256, 3) uint8 LUT, None = identity
+        self.maps = display.MapState()  # pop-up/overlay/underlay/cursor maps, setmap, blink
 
     # ------------------------------------------------------------------
     # windows and configuration (reference 4, 13)
@@ -94,7 +138,10 @@ class VGX:
         # the default projection maps window pixels: ortho2(-0.5, w-0.5, -0.5, h-0.5)
         win.st.matrices.single[-1] = stack.ortho(-0.5, w - 0.5, -0.5, h - 0.5, -1.0,
                                                  1.0).astype(np.float32)
+        # constraints and window-manager requests bind to the new window
+        win.wm.update((k, v) for k, v in self.pref.items() if k not in ("origin", "size"))
         self.windows[win.gid] = win
+        self.stacking.append(win.gid)
         self.current = win
         self.pref = {}
         # winopen queues INPUTCHANGE and REDRAW for the new window
@@ -109,6 +156,10 @@ class VGX:
         self._flush(win)
         self.last_image = self.image(win)
         del self.windows[gid]
+        if self._picking(win):
+            self.picking = None        # its pick/gselect session ends with it
+        if gid in self.stacking:
+            self.stacking.remove(gid)
         if self.current is win:
             self.current = next(iter(self.windows.values()), None)
 
@@ -125,19 +176,26 @@ class VGX:
         """Apply the configuration requests (gconfig(3G))."""
         self._flush(win)
         st = win.st
+        mode = st.drawmode                 # the requests are the normal framebuffer's
+        layers.switch(st, layers.NORMALDRAW)
         st.rgb = st.req_rgb
         st.double = st.req_double
+        st.multimap = st.req_multimap
         win.fb.configure(st.double, st.req_stencil, st.req_accum)
+        win.fb.configure_layers(*layers.resolve(st.req_overlay, st.req_underlay))
+        layers.reset_layers(st)            # every drawmode: index 0, writemask all ones
         st.colour = (0.0, 0.0, 0.0, 0.0)
         st.zwritemask = 0xFFFFFF
         st.swritemask = 0xFF
         st.cmask = 0xFFFFFFFF
         st.front_enabled = not st.double
         st.back_enabled = st.double
+        st.zdraw = False                   # zdraw(3G): FALSE after gconfig
+        layers.switch(st, mode)
 
     def swapbuffers(self, win):
         self._flush(win)
-        if win.st.double:
+        if layers.normal(win.st, "double"):      # whatever the drawmode (layers.py)
             win.fb.swap()
         self.frame_end(win)
 
@@ -145,6 +203,7 @@ class VGX:
         """A frame point (swapbuffers, gflush, finish): the runner counts it."""
         self._flush(win)
         win.frames += 1
+        self.maps.tick()                   # cyclemap/blink: retraces per frame point
         if self.frame_hook is not None:
             self.frame_hook(self, win)
 
@@ -160,6 +219,10 @@ class VGX:
         if self.current is not None:
             self._flush(self.current)
 
+    def _picking(self, win):
+        """Whether win is in picking or selecting mode (nothing is drawn)."""
+        return self.picking is not None and self.picking.win is win
+
     def flush_all(self):
         for win in self.windows.values():
             self._flush(win)
@@ -168,15 +231,24 @@ class VGX:
         b = win.batch
         if not len(b):
             return
+        if self._picking(win):
+            # pick/gselect: geometry and clipping only, no pixel (picking.py)
+            self.picking.test_batch(b, win.st)
+            b.keep_open_primitive() if b.open is not None else b.reset()
+            return
         st = win.st
         vp = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
         if vp is not None:
             # a pass that writes no colour and tests no alpha (a depth-only
             # or stencil pass) needs neither lighting nor texturing
             shade = self._colour_needed(win)
-            tex = self._texturing(win) if (b.klass == FILLED and shade) else None
+            tex = self._texturing(win) if (b.klass == FILLED and shade and
+                                           st.polymode == 1) else None   # PYM_FILL only
             work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport,
-                                          texturing=tex is not None, shade=shade)
+                                          texturing=tex is not None, shade=shade,
+                                          linestyles=self.linestyles)
+            if st.scrbox_mode == 1:           # scrbox(3G) SB_TRACK
+                scrbox.track(st, work, vp)
             # the maxima before _raster_setup: it marks them stale when the
             # pass writes z, for the passes after this one
             zmaxima = self._z_maxima(win) if work.klass == FILLED else None
@@ -242,46 +314,62 @@ class VGX:
         """Whether the fragments' colour is used: written to a colour buffer
         or tested by afunction."""
         st = win.st
-        full = 0xFFFFFFFF if st.rgb else 0xFFF
+        full = layers.index_bits(win)
         written = bool(self._targets(win)) and (st.cmask & full) != 0
         return written or (st.rgb and st.afunc[1] != 7)
 
     def _targets(self, win):
         """The colour banks drawing goes to (frontbuffer/backbuffer(3G))."""
         st, fb = win.st, win.fb
+        if st.drawmode != layers.NORMALDRAW:
+            # drawmode(3G): the pop-up/overlay/underlay bank (none in
+            # CURSORDRAW, or without planes)
+            bank = fb.layer(st.drawmode) if st.drawmode in layers.LAYERS else None
+            return [bank] if bank is not None else []
+        zdraw = getattr(st, "zdraw", False)
         if not st.double:
-            return [fb.front]
-        out = []
-        if st.back_enabled:
-            out.append(fb.back)
-        if st.front_enabled:
-            out.append(fb.front)
+            out = [fb.front] if (st.front_enabled or not zdraw) else []
+        else:
+            out = []
+            if st.back_enabled:
+                out.append(fb.back)
+            if st.front_enabled:
+                out.append(fb.front)
+        if zdraw and len(out) < 2:
+            # zdraw(3G): colour words also go to the z bank, as a third
+            # colour buffer (at most two banks per pass: docs/windows-and-devices.md)
+            out.append(fb.ensure_z().view(np.uint32))
+            fb.z_written()
         return out
 
     def _raster_setup(self, win, work, filled=True):
         """The RasterKey, planes tuple and parameter vector of a pass."""
         st, fb = win.st, win.fb
         targets = self._targets(win)
-        ztest = st.zbuffer
+        # the pop-up, overlay and underlay banks have no z or stencil: only
+        # the normal framebuffer's drawing tests them (layers.py)
+        normal = st.drawmode == layers.NORMALDRAW
+        ztest = st.zbuffer and normal
         zmask = st.zwritemask & 0xFFFFFF
-        full = 0xFFFFFFFF if st.rgb else 0xFFF
+        full = layers.index_bits(win)
         cmask_val = st.cmask & full
         color = len(targets) > 0 and cmask_val != 0
         stencil = 0
-        if st.stencil_on and fb.stencil is not None:
+        if st.stencil_on and fb.stencil is not None and normal:
             # 1: the bank is only read (every op ST_KEEP, or swritemask 0)
             keep = all(op == _stencil.ST_KEEP for op in st.stencil[3:6])
             stencil = 1 if keep or st.swritemask & ((1 << fb.stencil_planes) - 1) == 0 else 2
         pat = self.patterns.get(st.pattern) if filled and st.pattern else None
         logic = color and st.logicop != 3
         key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=color,
-                        gouraud=st.gouraud, cmode=not st.rgb,
+                        gouraud=st.gouraud or st.depthcue, cmode=not st.rgb,
                         twoside=bool(work is not None and work.twoside),
                         stencil=stencil,
                         blend=blend.key_code(*st.blendfunc) if (
                             color and st.rgb and not logic and st.blendfunc != (1, 0)) else 0,
                         logic=logic, atest=st.rgb and st.afunc[1] != 7,
-                        pattern=pat is not None, cmask=color and cmask_val != full,
+                        pattern=pat is not None,
+                        cmask=color and (cmask_val != full or not normal),
                         texture=False, dual=color and len(targets) >= 2)
         zb = fb.ensure_z() if ztest else _DUMMY_Z
         if key.zwrite:
@@ -372,6 +460,54 @@ class VGX:
         for p in pts:
             self.vertex(win, *p, call)
         self.end(win, kind, call)
+
+    def primitive_array(self, win, kind, pts, call, colours=None):
+        """A whole primitive from an (n, 4) array (circ, arc, sbox, splf ...)
+        with list operations only; ``colours`` (n, 4) gives each vertex its
+        own colour (splf), the current colour stays as it was."""
+        pts = np.asarray(pts, np.float64).reshape(-1, 4)
+        if kind == POLYGON and len(pts) > config.MAX_POLYGON_VERTICES:
+            fail(call, f"{len(pts)} vertices in a polygon", "GD_NVERTEX_POLY is 256")
+        self.begin(win, kind, call)
+        b = win.batch
+        if colours is None:
+            if b.dirty:
+                b.record_attributes(win.st)
+            b.pos += pts.ravel().tolist()
+            b.akey += [b.cur] * len(pts)
+        else:
+            st = win.st
+            keep = st.colour, st.last_was_normal
+            for p, c in zip(pts.tolist(), colours):   # per-vertex colours: one record each
+                self.set_colour(win, tuple(c))
+                b.record_attributes(st)
+                b.pos += p
+                b.akey.append(b.cur)
+            st.colour, st.last_was_normal = keep
+            b.dirty = True
+        self.end(win, kind, call)
+
+    def polyline_eye_vertices(self, win, kind, projection, pts, call):
+        """One primitive whose points (N, 4) are already eye coordinates (the
+        ModelView applied), drawn through ``projection`` only (curveit(3G));
+        appended as one block, as display-list replay appends."""
+        from .geometry.batch import Transform
+        b = win.batch
+        if b.open is not None:
+            fail(call, f"inside bgn{KIND_NAMES[b.open[0]]}", "call it outside bgn/end")
+        klass = CLASS_OF[kind]
+        if len(b) and b.klass != klass:
+            self._flush(win)
+        b.klass = klass
+        b.xforms.append(Transform(np.eye(4), np.asarray(projection, np.float64)))
+        b.xf_dirty = False
+        b.record_attributes(win.st)          # the current colour, with that transform
+        v0 = b.nverts
+        pts = np.ascontiguousarray(pts, np.float64).reshape(-1, 4)
+        b.add_vertices(pts, np.full(len(pts), b.cur, np.int64))
+        b.add_block(np.array([[kind, v0, len(pts), 0]], np.int64))
+        b.xf_dirty = True             # the next vertices use the matrices in force again
+        b.dirty = True
 
     def move(self, win, p):
         win.st.gpos = p
@@ -473,11 +609,13 @@ class VGX:
         colour buffer, honouring the pattern and the colour writemask only."""
         self._flush(win)
         r = self.clear_rect(win)
+        if self._picking(win):
+            return self.picking.clear_hit(r)
         if r is None:
             return
         st = win.st
         word = np.uint32(self.colour_word(st, st.colour))
-        mask = np.uint32(st.cmask & (0xFFFFFFFF if st.rgb else 0xFFF))
+        mask = np.uint32(st.cmask & layers.index_bits(win))
         pat = self.patterns.get(st.pattern) if st.pattern else None
         for t in self._targets(win):
             if pat is None:
@@ -492,7 +630,7 @@ class VGX:
         self._flush(win)
         r = self.clear_rect(win)
         fb = win.fb
-        if r is None or fb.stencil is None:
+        if r is None or fb.stencil is None or self._picking(win):
             return
         smax = (1 << fb.stencil_planes) - 1
         fill(fb.stencil, r[0], r[1], r[2], r[3], np.uint8(sval & smax),
@@ -501,7 +639,7 @@ class VGX:
     def zclear(self, win):
         self._flush(win)
         r = self.clear_rect(win)
-        if r is None:
+        if r is None or self._picking(win):
             return
         m = win.st.zwritemask & 0xFFFFFF
         fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], ZMAX, m)
@@ -511,9 +649,11 @@ class VGX:
     def czclear(self, win, cval, zval):
         self._flush(win)
         r = self.clear_rect(win)
+        if self._picking(win):
+            return self.picking.clear_hit(r)
         if r is None:
             return
-        word = cval & (0xFFFFFFFF if win.st.rgb else 0xFFF)
+        word = cval & layers.index_bits(win)
         for t in self._targets(win):
             fill(t, r[0], r[1], r[2], r[3], np.uint32(word), np.uint32(0xFFFFFFFF))
         z = min(max(int(zval), ZMIN), ZMAX)
@@ -533,7 +673,7 @@ class VGX:
         from .framebuffer import accum as A
         self._flush(win)
         r = self.clear_rect(win)
-        if r is None:
+        if r is None or self._picking(win):
             return
         st, fb = win.st, win.fb
         if op == A.AC_RETURN:
@@ -553,6 +693,13 @@ class VGX:
     # reading pixels (reference 11)
     def read_bank(self, win, source):
         fb = win.fb
+        if source == SRC_AUTO and win.st.drawmode in layers.LAYERS:
+            source = {v: k for k, v in _SRC_LAYER.items()}[win.st.drawmode]
+        if source in _SRC_LAYER:
+            # readsource(SRC_PUP/SRC_OVER/SRC_UNDER): a framebuffer without
+            # planes reads 0
+            bank = fb.layer(_SRC_LAYER[source])
+            return bank if bank is not None else np.zeros((win.height, win.width), np.uint32)
         if source == SRC_ZBUFFER:
             return fb.ensure_z()
         if source == SRC_BACK:
@@ -577,6 +724,8 @@ class VGX:
         """lrectwrite/rectwrite: words (h, w), row 0 at y1 (Decision 11)."""
         from .scan.spans import pixel_kernel
         self._flush(win)
+        if self._picking(win):
+            return                  # nothing is drawn in picking/selecting mode
         key, planes, ip = self._raster_setup(win, None, filled=False)
         key = key._replace(ztest=False, zwrite=False, stencil=False, pattern=False,
                            gouraud=False, twoside=False)
@@ -585,13 +734,43 @@ class VGX:
         pixel_kernel(key)(np.ascontiguousarray(words), x1, y1, float(zoom[0]),
                           float(zoom[1]), planes, ip)
 
+    def char_pixels(self, win, xs, ys, z):
+        """charstr(3G): glyph pixels (window x, y int arrays) at one window z,
+        in the current colour, through the per-fragment operations of a point
+        (writemasks, z test and write, stencil, blend); clipped to scrmask ∩
+        window, never to the viewport; patterns do not apply."""
+        from .raster import fragment as F
+        from .scan.lines import point_kernel
+        self._flush(win)
+        st = win.st
+        sc = _intersect(st.scrmask, (0, win.width - 1, 0, win.height - 1))
+        if sc is None or not len(xs) or self._picking(win):
+            return
+        key, planes, ip = self._raster_setup(win, None, filled=False)
+        if key.gouraud and not key.color:
+            key = key._replace(gouraud=False)   # the key a point batch uses
+        ip[F.P_SX0], ip[F.P_SX1], ip[F.P_SY0], ip[F.P_SY1] = sc
+        pts = np.empty((len(xs), 7))
+        pts[:, 0] = xs
+        pts[:, 1] = ys
+        pts[:, 2] = z
+        pts[:, 3:7] = st.colour
+        if st.scrbox_mode == 1:               # scrbox(3G) tracks characters too
+            scrbox.track_xy(st, pts[:, :2], sc)
+        point_kernel(key)(pts, planes, ip)
+
     # ------------------------------------------------------------------
     # display
     def image(self, win=None):
         """What the screen shows of a window: (h, w, 3) uint8, top row first."""
         win = win or self.current
         self._flush(win)
-        return display.scanout(win.fb.front, win.st.rgb, self.colormap)
+        st = win.st
+        img = display.scanout_window(win.fb, layers.normal(st, "rgb"), st.multimap,
+                                     self.colormap, self.maps)
+        if self.gamma is not None:           # gammaramp(3G): applied at scan-out
+            img = np.stack([self.gamma[img[..., c], c] for c in range(3)], axis=-1)
+        return img
 
 
 def _intersect(*rects):

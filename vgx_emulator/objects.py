@@ -270,3 +270,27 @@ def replay_run(machine, win, run):
         st.last_was_normal = last == "n"
     b.dirty = True
     return True
+
+
+def bbox_culled(st, xmin, ymin, x1, y1, x2, y2):
+    """bbox2(3G): whether the box (x1, y1)-(x2, y2), z = 0, through the
+    current matrices and the viewport, lies wholly outside the viewport
+    (every corner outside one side of the clip volume in x or y, or behind
+    the eye) or projects smaller than xmin and than ymin pixels."""
+    mv, pr = st.matrices.vertex_matrices()
+    corners = np.array([[x1, y1, 0.0, 1.0], [x2, y1, 0.0, 1.0],
+                        [x2, y2, 0.0, 1.0], [x1, y2, 0.0, 1.0]])
+    with np.errstate(all="ignore"):
+        c = corners @ (mv @ pr)
+        x, y, w = c[:, 0], c[:, 1], c[:, 3]
+        if not np.isfinite(c).all():
+            return False
+        if (w <= 0).all() or (x > w).all() or (x < -w).all() or (y > w).all() or \
+                (y < -w).all():
+            return True                   # pruned: outside the viewport
+        if (w <= 0).any():
+            return False
+        l, r, b, t = st.viewport
+        sx = np.ptp(x / w) * (r - l + 1) / 2.0
+        sy = np.ptp(y / w) * (t - b + 1) / 2.0
+    return bool(sx < xmin and sy < ymin)   # culled: smaller than the feature size

@@ -7,7 +7,8 @@ finish) is counted; after ``--frames`` of them the program is stopped.  A
 the program asked for REDRAW events and fewer frames than asked were drawn
 (one per frame, so a program that never draws cannot loop); otherwise it
 ends the program cleanly.  What the screen shows of the current window (or
-of the last window closed) is then saved as a PNG.
+of the last window closed) is then saved as a PNG.  ``--menu 3,2.1`` answers
+the program's dopup calls (docs/text-and-menus.md).
 """
 import argparse
 import runpy
@@ -23,19 +24,49 @@ class FramesDone(BaseException):
     """Raised by the runner's frame hook once enough frames were drawn."""
 
 
-def run_program(path, frames=1, argv=None):
+def run_program(path, frames=1, argv=None, menu=None):
     """Run ``path`` headless for at most ``frames`` frames; return the
-    (h, w, 3) uint8 image it left on the screen (None if it drew nothing)."""
+    (h, w, 3) uint8 image it left on the screen (None if it drew nothing).
+
+    ``menu``: scripted dopup answers (``"3,2.1"``, see vgx_emulator.menus),
+    also taken from a leading ``--menu ANSWERS`` in ``argv`` (so that a
+    FIGURES entry's args can carry them).  While answers are left and the
+    program queues RIGHTMOUSE, a right-button press and release is queued
+    whenever it finishes a frame or waits for input, as a user would click;
+    the run then lasts until every answer was taken (at most 10 extra
+    frames per answer)."""
     from irisgl._current import machine
+    from . import menus
     machine.reset()
+    argv = list(argv or [])
+    if len(argv) >= 2 and argv[0] == "--menu":
+        menu, argv = argv[1], argv[2:]
+    if menu is not None:
+        menus.script(menu, machine)
+    answers = menus.pending(machine)
     drawn = {"n": 0, "posted_at": -1}
+    rightmouse = 101                     # device.h RIGHTMOUSE, dopup's button
+
+    def click():
+        """Queue a RIGHTMOUSE press/release for the next scripted answer."""
+        ev = machine.events
+        if (menus.pending(machine) and rightmouse in ev.queued
+                and not any(d == rightmouse for d, _ in ev.entries)):
+            ev.enter(rightmouse, 1)
+            ev.enter(rightmouse, 0)
+            return True
+        return False
 
     def on_frame(m, win):
         drawn["n"] += 1
-        if drawn["n"] >= frames:
+        if drawn["n"] >= frames and (not menus.pending(machine)
+                                     or drawn["n"] >= frames + 10 * answers):
             raise FramesDone()
+        click()
 
     def on_wait():
+        if click():
+            return
         w = machine.current
         if (w is not None and REDRAW in machine.events.queued
                 and drawn["n"] < frames and drawn["posted_at"] != drawn["n"]):
@@ -45,7 +76,7 @@ def run_program(path, frames=1, argv=None):
     machine.frame_hook = on_frame
     machine.events.wait_hook = on_wait
     old_argv = sys.argv
-    sys.argv = [str(path)] + list(argv or [])
+    sys.argv = [str(path)] + argv
     try:
         runpy.run_path(str(path), run_name="__main__")
     except (FramesDone, QueueExhausted):
@@ -67,15 +98,24 @@ def main(argv=None):
     ap.add_argument("program", help="a ported IRIS GL program (.py)")
     ap.add_argument("--out", default=None, help="PNG to write (default: PROGRAM.png)")
     ap.add_argument("--frames", type=int, default=1, help="frames to let it draw (default 1)")
+    ap.add_argument("--menu", default=None,
+                    help="answers of the program's dopup calls, one per call, comma-separated:"
+                         " item numbers (title not counted), 2.1 = item 1 of item 2's submenu")
     a, rest = ap.parse_known_args(argv)
     a.args = [x for x in rest if x != "--"]
     if a.frames < 1:
         ap.error("--frames must be >= 1")
+    if a.menu is not None:
+        from .menus import parse_answers
+        try:
+            parse_answers(a.menu)
+        except ValueError as e:
+            ap.error(str(e))
     prog = Path(a.program)
     if not prog.is_file():
         ap.error(f"no such program: {prog}")
     t0 = time.perf_counter()
-    img = run_program(prog, a.frames, a.args)
+    img = run_program(prog, a.frames, a.args, menu=a.menu)
     if img is None:
         print(f"vgx-run: {prog} opened no window; nothing saved", file=sys.stderr)
         return 1

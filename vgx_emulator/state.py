@@ -6,7 +6,11 @@ batch is flushed.  Initial values are those of a freshly opened window
 (reference 15 "Initial state", section 4 for gconfig).
 """
 from .framebuffer import ZMAX, ZMIN
+from .geometry.fog import FogState
 from .geometry.stack import MatrixState
+
+#: scrbox(3G) after SB_RESET: left/bottom greater than right/top
+SCRBOX_EMPTY = (1 << 30, -(1 << 30), 1 << 30, -(1 << 30))
 
 
 class WindowState:
@@ -50,6 +54,8 @@ class WindowState:
         self.zbuffer = False
         self.zfunc = 3                 # ZF_LEQUAL
         self.zwritemask = 0xFFFFFF
+        self.zdraw = False                         # zdraw(3G): colour into z
+        self.zsource = 0                           # zsource(3G): ZSRC_DEPTH
         self.front_enabled = True
         self.back_enabled = False
         # stencil(3G): enable, ref, func, mask, fail, pass, zpass; swritemask
@@ -70,3 +76,42 @@ class WindowState:
         self.texgen = {}                           # coord -> (mode, plane (4,), enabled)
         # graphics position (move/draw) and character position
         self.gpos = None
+        # cmov(3G): window x, y and z of the character position, and whether
+        # strings may be drawn there ([S] start: pixel (0, 0), z 0, valid)
+        self.cpos = (0.0, 0.0)
+        self.cpos_z = 0.0
+        self.cpos_valid = True
+        self.font = 0                              # font(3G) selection
+        # lines, points and polygon modes (docs/drawing-2d-and-lines.md)
+        self.linewidth = 1.0                       # linewidth/linewidthf, as given
+        self.linestyle = 0                         # setlinestyle index (0 = 0xFFFF)
+        self.lsrepeat = 1                          # lsrepeat factor 1..255
+        self.resetls = True                        # resetls(TRUE): pattern restarts per line
+        self.lsbackup = False                      # lsbackup(TRUE): last 2 pixels always on
+        self.ls_phase = 0                          # pattern counter carried when resetls FALSE
+        self.linesmooth = 0                        # SML_OFF
+        self.pntsize = 1.0                         # pntsize/pntsizef, as given
+        self.pntsmooth = 0                         # SMP_OFF
+        self.polysmooth = 0                        # PYSM_OFF
+        self.polymode = 1                          # PYM_FILL
+        # clipplane(3G): per index (eye-space plane or None, enabled); the
+        # enabled defined planes as a (K, 4) array (None when there are none)
+        self.clipplanes = [(None, False)] * 6
+        self.user_planes = None
+        # fogvertex(3G) (geometry/fog.py) and scrbox(3G) (left, right, bottom, top)
+        self.fog = FogState()
+        self.scrbox_mode = 0                       # SB_RESET
+        self.scrbox = SCRBOX_EMPTY
+        # drawmode(3G) and the other framebuffers (framebuffer/layers.py):
+        # the fields of layers.SWAPPED of the drawmodes not current
+        self.drawmode = 0x10                       # NORMALDRAW
+        self.saved = {}
+        self.req_overlay = 2                       # overlay(3G), at gconfig
+        self.req_underlay = 0                      # underlay(3G), at gconfig
+        self.req_multimap = False                  # multimap/onemap(3G), at gconfig
+        self.multimap = False
+        # depthcue(3G): lshaderange (low, high, znear, zfar), lRGBrange
+        # (rmin, gmin, bmin, rmax, gmax, bmax, znear, zfar)
+        self.depthcue = False
+        self.shaderange = (0, 7, ZMIN, ZMAX)
+        self.rgbrange = (0, 0, 0, 255, 255, 255, ZMIN, ZMAX)

@@ -11,6 +11,9 @@ back colour  gconfig() after doublebuffer()                        uint32 (h, w)
 z            first zbuffer(TRUE), zclear, czclear or lsetdepth use int32 (h, w)
 stencil      gconfig() after stensize(n > 0)                       uint8 (h, w)
 accumulation gconfig() after acsize(16)                            int16 (h, w, 4)
+pop-up,      first drawing or reading in PUPDRAW/OVERDRAW/UNDERDRAW uint32 (h, w)
+overlay,     when the framebuffer has planes (layers.py; overlay(3G),
+underlay     underlay(3G) at gconfig)
 ============ ===================================================== ============
 
 Colour words are packed ``0xAABBGGRR`` in RGB mode and hold the colour index
@@ -22,6 +25,7 @@ not a VGX bank: built from z only when a pass can use them.
 """
 import numpy as np
 
+from . import layers as _layers
 from . import zmax
 
 ZMIN = -0x800000
@@ -47,6 +51,26 @@ class Framebuffer:
         self.stencil = None
         self.stencil_planes = 0
         self.accum = None
+        self.layer_planes = dict(_layers.DEFAULT_PLANES)
+        self.layers = {}            # drawmode -> colour-index bank (layers.py)
+
+    def layer(self, mode):
+        """The bank of the pop-up, overlay or underlay framebuffer (created,
+        all 0 = transparent, on first use), or None when it has no planes."""
+        if not self.layer_planes.get(mode):
+            return None
+        bank = self.layers.get(mode)
+        if bank is None:
+            bank = self.layers[mode] = _plane(self.height, self.width, np.uint32)
+        return bank
+
+    def configure_layers(self, overlay, underlay):
+        """gconfig(): overlay and underlay plane counts (layers.resolve);
+        a bank whose size changes starts again all 0."""
+        for mode, n in ((_layers.OVERDRAW, overlay), (_layers.UNDERDRAW, underlay)):
+            if self.layer_planes.get(mode) != n:
+                self.layer_planes[mode] = n
+                self.layers.pop(mode, None)
 
     def configure(self, double, stencil_planes, accum_planes):
         """Apply gconfig(): create or drop the back, stencil and accumulation banks."""
@@ -97,5 +121,5 @@ class Framebuffer:
 
     def nbytes(self):
         """Memory held by the banks that exist."""
-        return sum(a.nbytes for a in (self.front, self.back, self.z,
-                                      self.stencil, self.accum) if a is not None)
+        return sum(a.nbytes for a in (self.front, self.back, self.z, self.stencil,
+                                      self.accum, *self.layers.values()) if a is not None)

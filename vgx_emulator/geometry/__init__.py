@@ -20,9 +20,9 @@ import numpy as np
 
 from ..errors import warn
 from ..jit import njit
-from . import assemble, clip, lighting, viewport
+from . import assemble, clip, depthcue, fog, lighting, lines2d, viewport
 from .assemble import CLOSEDLINE, POLYGON, QSTRIP, TMESH
-from .batch import FILLED, LAST_WAS_NORMAL, LINES
+from .batch import FILLED, LAST_WAS_NORMAL, LINES, POINTS
 from .stack import MVIEWING
 
 
@@ -240,7 +240,8 @@ def _assemble_table(batch, pos, table):
     return tris[order], prov[order]
 
 
-def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=True):
+def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=True,
+                  linestyles=None):
     """Run the geometry pipeline over ``batch``; returns a WindowWork.
     ``shade`` False (the pass uses no colour): vertex colours pass through
     unlit."""
@@ -252,6 +253,13 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     with np.errstate(all="ignore"):     # a non-finite normal or matrix: dropped below
         col, back = _light(st, defs, eye4, attrs, xf, batch.xforms, batch.mats) if shade else \
             (attrs[:, 3:7].copy(), None)
+    if shade and st.rgb and st.fog.on:
+        with np.errstate(all="ignore"):     # fogvertex(3G): per vertex, after lighting
+            col, back = fog.apply(st.fog, eye4, col, back)
+    # clipplane(3G): distances to the enabled user planes (eye space)
+    with np.errstate(all="ignore"):
+        ud = clip.user_distances(eye4, st.user_planes)
+    nuser = 0 if ud is None else ud.shape[1]
     bad = np.zeros(len(pos), bool)
     for a, k in ((pos, 4), (attrs, 7), (clp, 4), (col, 4)) + \
             (((tc, 2),) if tc is not None else ()):
@@ -260,9 +268,12 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     work = WindowWork(klass=batch.klass, twoside=back is not None)
     table = batch.prim_table()
     near_far = st.depth_range
-    if batch.klass == FILLED:
+    mode = lines2d.fill_mode(st, batch.klass == FILLED)     # polymode(3G)
+    if mode in ("line", "point"):
+        work.klass = LINES if mode == "line" else POINTS
+    if mode == "fill":
         tris, prov = _assemble_filled(batch, pos, table)
-        codes = clip.outcodes(clp, gx, gy)
+        codes = clip.outcodes(clp, gx, gy, ud)
         fate = clip.classify(tris, prov, bad, codes)
         work.dropped = int(np.count_nonzero(fate == clip.DROPPED))
         inside = fate == clip.INSIDE
@@ -270,9 +281,9 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         work.tris, work.prov = tris[inside], prov[inside]
         extra = ([back] if back is not None else []) + ([tc] if tc is not None else [])
         if len(cross):
-            verts = np.concatenate([clp, col] + extra, axis=1)
+            verts = np.concatenate([clp, col] + extra + ([ud] if nuser else []), axis=1)
             newv, nt, npv, src = clip.clip_triangles(verts, tris[cross], prov[cross], codes,
-                                                     gx, gy)
+                                                     gx, gy, nuser)
             verts = np.concatenate((verts, newv))
             # pieces keep the place of their source
             order = np.argsort(np.concatenate((np.nonzero(inside)[0], cross[src])),
@@ -303,26 +314,24 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         if tc is not None:
             w = np.where(ok & (clp[:, 3] != 0), clp[:, 3], 1.0)
             work.TC = np.ascontiguousarray(np.stack((tc[:, 0] / w, tc[:, 1] / w, 1.0 / w), axis=1))
-    elif batch.klass == LINES:
-        starts, counts = table[:, 1], table[:, 2]
-        closed = table[:, 0] == CLOSEDLINE
-        segs, prov = assemble.polylines(starts, counts, closed)
-        drop = bad[segs].any(axis=1)
-        work.dropped = int(drop.sum())
-        segs, prov = segs[~drop], prov[~drop]
-        p0, p1, kept = clip.clip_segments(clp, col, segs, gx, gy)
-        work.seg0 = _window_rows(p0, viewport_rect, near_far, snap)
-        work.seg1 = _window_rows(p1, viewport_rect, near_far, snap)
-        work.segflat = np.ascontiguousarray(col[prov[kept]])
+    elif work.klass == LINES:
+        # segments (or polygon outlines), clipping, then linestyle and width
+        work.seg0, work.seg1, work.segflat, work.dropped = lines2d.line_work(
+            batch, st, table, pos, clp, col, bad, gx, gy, ud, viewport_rect, near_far,
+            snap, mode == "line", snap, linestyles)
     else:
         idx = assemble._ranges(table[:, 1], table[:, 2])[0]
         drop = bad[idx]
         work.dropped = int(drop.sum())
         idx = idx[~drop]
-        codes = clip.outcodes(clp[idx], gx, gy)
+        codes = clip.outcodes(clp[idx], gx, gy, ud[idx] if nuser else None)
         idx = idx[codes == 0]
         rows = np.concatenate((clp[idx], col[idx]), axis=1)
-        work.points = _window_rows(rows, viewport_rect, near_far, snap)
+        work.points = lines2d.grow_points(_window_rows(rows, viewport_rect, near_far, snap),
+                                          lines2d.used_point_size(st.pntsize))
+    if shade and st.depthcue:
+        depthcue.apply(work, st)        # depthcue(3G): colour from window z
+    lines2d.smooth(work, st, snap, mode == "line")   # linesmooth/pntsmooth(3G) coverage
     if work.dropped:
         warn("v*/n3f/c*/t*", f"{work.dropped} primitive(s) with a non-finite vertex, "
              "normal, colour, texture coordinate or transformed position (or one the "

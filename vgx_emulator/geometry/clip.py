@@ -11,7 +11,14 @@ plane  distance        why
 4      w + z           near plane
 5      w - z           far plane
 6      w - eps         w > 0: nothing behind the eye survives
+7..12  u_k             user clip planes (clipplane(3G)), see below
 =====  ==============  ======================================
+
+User clip planes: the distance of a vertex to enabled plane k is the dot
+product of its eye coordinates with the eye-space plane (clipplane(3G));
+it is linear in the vertex, so it is carried as an extra column ``u_k`` of
+the clipped vertex rows, interpolated like every attribute, and the cut is
+made where it reaches 0 exactly as for the frustum planes.
 
 x and y are clipped only against the guard band (g >= 1); the rasterizer's
 scissor trims the rest exactly, so most triangles are never cut.  Vertices
@@ -27,20 +34,42 @@ NPLANES = 7
 W_EPSILON = 1e-30
 
 
-def distances(v, gx, gy):
-    """(N, 7) plane distances of clip-space vertices (N, 4)."""
+#: user clip planes (clipplane(3G): GD_CLIPPLANES)
+MAX_USER_PLANES = 6
+
+
+def distances(v, gx, gy, user=None):
+    """(N, 7 + K) plane distances of clip-space vertices (N, 4); ``user``
+    (N, K) are the vertices' distances to the K enabled user planes."""
     x, y, z, w = v[:, 0], v[:, 1], v[:, 2], v[:, 3]
-    return np.stack((gx * w + x, gx * w - x, gy * w + y, gy * w - y,
-                     w + z, w - z, w - W_EPSILON), axis=1)
+    d = np.stack((gx * w + x, gx * w - x, gy * w + y, gy * w - y,
+                  w + z, w - z, w - W_EPSILON), axis=1)
+    return d if user is None or user.shape[1] == 0 else np.concatenate((d, user), axis=1)
 
 
-def outcodes(v, gx, gy):
+def user_distances(eye4, planes):
+    """(N, K) distances of eye-space vertices (N, 4) to eye-space planes (K, 4),
+    or None without planes."""
+    if planes is None or len(planes) == 0:
+        return None
+    return np.ascontiguousarray(eye4 @ np.asarray(planes, np.float64).T)
+
+
+def outcodes(v, gx, gy, user=None):
     """(N,) int64: bit p set when the vertex (row of v (N, 4)) is outside
     plane p; non-finite -> all bits.  The distances are those of
-    ``distances``.  (Arrays are made outside the kernels of this module:
-    with an empty cache numba's np.zeros costs its own compile.)"""
+    ``distances``; bit 7 + k is user plane k (``user`` (N, K)).  (Arrays are
+    made outside the kernels of this module: with an empty cache numba's
+    np.zeros costs its own compile.)"""
     codes = np.empty(len(v), np.int64)
     _outcodes(v, gx, gy, codes)
+    if user is not None and user.shape[1]:
+        k = user.shape[1]
+        with np.errstate(invalid="ignore"):
+            out = ~(user >= 0)                  # NaN counts as outside
+        codes |= (out.astype(np.int64) << (NPLANES + np.arange(k))).sum(axis=1)
+        bad = ~np.isfinite(user).all(axis=1)
+        codes[bad] = (1 << (NPLANES + k)) - 1
     return codes
 
 
@@ -56,7 +85,7 @@ def _outcodes(v, gx, gy, codes):
             continue
         c = 0
         for p in range(NPLANES):
-            if _dist(v[i], p, gx, gy) < 0:
+            if _dist(v[i], p, gx, gy, 0) < 0:
                 c |= 1 << p
         codes[i] = c
 
@@ -101,7 +130,9 @@ def _classify(tris, prov, bad, codes, out):
 
 
 @njit
-def _dist(v, p, gx, gy):
+def _dist(v, p, gx, gy, ucol):
+    if p >= NPLANES:
+        return v[ucol + p - NPLANES]       # a user plane: its distance column
     x = v[0]
     y = v[1]
     z = v[2]
@@ -122,26 +153,30 @@ def _dist(v, p, gx, gy):
 
 
 @njit
-def clip_triangles(verts, tris, prov, codes, gx, gy):
+def clip_triangles(verts, tris, prov, codes, gx, gy, nuser):
     """Sutherland-Hodgman against the planes each triangle crosses.
 
     verts: (N, C) rows = clip x, y, z, w then attributes (interpolated
-    linearly in clip space).  Returns (new_verts (M, C), tris (Q, 3), prov
+    linearly in clip space); the last ``nuser`` columns are the distances
+    to the enabled user planes (planes 7..).  Returns (new_verts (M, C), tris (Q, 3), prov
     (Q,), source (Q,)); new vertex indices start at N; source is the row of
     ``tris`` each piece came from.  The provoking index is kept (the
     original vertex still holds the flat colour).
     """
     t = tris.shape[0]
     c = verts.shape[1]
-    newv = np.empty((t * 12, c))
-    outt = np.empty((t * 10, 3), np.int64)
-    outp = np.empty(t * 10, np.int64)
-    outs = np.empty(t * 10, np.int64)
+    nplanes = NPLANES + nuser
+    ucol = c - nuser
+    # each plane adds at most 2 vertices and 1 side to the convex piece
+    newv = np.empty((t * 2 * nplanes, c))
+    outt = np.empty((t * (nplanes + 1), 3), np.int64)
+    outp = np.empty(t * (nplanes + 1), np.int64)
+    outs = np.empty(t * (nplanes + 1), np.int64)
     nv = 0
     nt = 0
     base = verts.shape[0]
-    poly = np.empty(16, np.int64)
-    tmp = np.empty(16, np.int64)
+    poly = np.empty(3 + nplanes, np.int64)
+    tmp = np.empty(3 + nplanes, np.int64)
     for i in range(t):
         a = tris[i, 0]
         b = tris[i, 1]
@@ -151,7 +186,7 @@ def clip_triangles(verts, tris, prov, codes, gx, gy):
         poly[0] = a
         poly[1] = b
         poly[2] = d
-        for p in range(7):
+        for p in range(nplanes):
             if not (cross >> p) & 1:
                 continue
             m = 0
@@ -160,8 +195,8 @@ def clip_triangles(verts, tris, prov, codes, gx, gy):
                 ib = poly[(k + 1) % n]
                 va = verts[ia] if ia < base else newv[ia - base]
                 vb = verts[ib] if ib < base else newv[ib - base]
-                da = _dist(va, p, gx, gy)
-                db = _dist(vb, p, gx, gy)
+                da = _dist(va, p, gx, gy, ucol)
+                db = _dist(vb, p, gx, gy, ucol)
                 if da >= 0:
                     tmp[m] = ia
                     m += 1
@@ -192,22 +227,27 @@ def clip_triangles(verts, tris, prov, codes, gx, gy):
     return newv[:nv].copy(), outt[:nt].copy(), outp[:nt].copy(), outs[:nt].copy()
 
 
-def clip_segments(v, attrs, segs, gx, gy):
-    """Liang-Barsky in homogeneous coordinates for segments (S, 2).
+def clip_segments(v, attrs, segs, gx, gy, user=None):
+    """Liang-Barsky in homogeneous coordinates for segments (S, 2), against
+    the frustum planes and the user planes (``user``: (N, K) distances).
 
     Returns (p0 (S', 4+K), p1 (S', 4+K), keep index into segs): the clipped
     endpoints with attributes interpolated."""
     a = np.concatenate((v, attrs), axis=1)
     p0 = a[segs[:, 0]]
     p1 = a[segs[:, 1]]
-    d0 = distances(p0[:, :4], gx, gy)
-    d1 = distances(p1[:, :4], gx, gy)
+    u0 = user[segs[:, 0]] if user is not None else None
+    u1 = user[segs[:, 1]] if user is not None else None
+    d0 = distances(p0[:, :4], gx, gy, u0)
+    d1 = distances(p1[:, :4], gx, gy, u1)
     with np.errstate(invalid="ignore", divide="ignore"):
         finite = np.isfinite(p0[:, :4]).all(axis=1) & np.isfinite(p1[:, :4]).all(axis=1)
+        if u0 is not None:
+            finite &= np.isfinite(u0).all(axis=1) & np.isfinite(u1).all(axis=1)
         t0 = np.zeros(len(segs))
         t1 = np.ones(len(segs))
         keep = finite & ~((d0 < 0) & (d1 < 0)).any(axis=1)
-        for p in range(NPLANES):
+        for p in range(d0.shape[1]):
             a0, a1 = d0[:, p], d1[:, p]
             enter = (a0 < 0) & (a1 >= 0)
             leave = (a0 >= 0) & (a1 < 0)

@@ -115,3 +115,17 @@ def patch_surface(ubasis, vbasis, gx, gy, gz, usegs, vsegs):
             bad = ln <= 1e-9 * scale * scale
     n = np.divide(n, ln[..., None], out=np.zeros_like(n), where=ln[..., None] > 0)
     return p, n
+
+
+def forward_differences(m, n):
+    """curveit(3G): the n + 1 points (rows 4) that iterating the rows of the
+    forward-difference matrix ``m`` n times puts in its last row (row i +=
+    row i-1 for i = 3, 2, 1 each step), starting with the last row itself;
+    as cumulative sums, in the order the iteration adds."""
+    m = np.asarray(m, np.float64)
+    r0, r1, r2, r3 = m
+    k = np.arange(n)[:, None]
+    row1 = r1 + k * r0                                             # r1 before step k+1
+    row2 = r2 + np.concatenate((np.zeros((1, 4)), np.cumsum(row1, axis=0)))[:n]
+    row3 = r3 + np.concatenate((np.zeros((1, 4)), np.cumsum(row2, axis=0)))
+    return row3

@@ -1,0 +1,122 @@
+"""getgdesc(3G) of the emulated IRIS-4D VGX: one value for every inquiry.
+
+getgdesc(3G) returns the most the graphics system offers, before and after
+gconfig.  Each value says where it comes from: a man page or the SGI
+Graphics Library Programming Guide (1992), what the emulator provides
+(marked "emulator", when the call behind it is there), or a choice where
+no source gives the VGX's number (marked "chosen"; docs/api.md and
+docs/decisions.md list them).
+"""
+from . import config
+from .framebuffer import ZMAX, ZMIN
+
+# gl.h values, kept here so that the machine does not import irisgl
+_GD = dict(
+    XPMAX=0, YPMAX=1, XMMAX=2, YMMAX=3, ZMIN=4, ZMAX=5, BITS_NORM_SNG_RED=6,
+    BITS_NORM_SNG_GREEN=7, BITS_NORM_SNG_BLUE=8, BITS_NORM_DBL_RED=9, BITS_NORM_DBL_GREEN=10,
+    BITS_NORM_DBL_BLUE=11, BITS_NORM_SNG_CMODE=12, BITS_NORM_DBL_CMODE=13,
+    BITS_NORM_SNG_MMAP=14, BITS_NORM_DBL_MMAP=15, BITS_NORM_ZBUFFER=16,
+    BITS_OVER_SNG_CMODE=17, BITS_UNDR_SNG_CMODE=18, BITS_PUP_SNG_CMODE=19,
+    BITS_NORM_SNG_ALPHA=21, BITS_NORM_DBL_ALPHA=22, BITS_CURSOR=23, OVERUNDER_SHARED=24,
+    BLEND=25, CIFRACT=26, CROSSHAIR_CINDEX=27, DITHER=28, LINESMOOTH_CMODE=30,
+    LINESMOOTH_RGB=31, LOGICOP=33, NSCRNS=35, NURBS_ORDER=36, NBLINKS=37, NVERTEX_POLY=39,
+    PATSIZE_64=40, PNTSMOOTH_CMODE=41, PNTSMOOTH_RGB=42, PUP_TO_OVERUNDER=43, READSOURCE=44,
+    READSOURCE_ZBUFFER=48, STEREO=50, SUBPIXEL_LINE=51, SUBPIXEL_PNT=52, SUBPIXEL_POLY=53,
+    TRIMCURVE_ORDER=54, WSYS=55, ZDRAW_GEOM=57, ZDRAW_PIXELS=58, SCRNTYPE=61, TEXTPORT=62,
+    NMMAPS=63, FRAMEGRABBER=64, TIMERHZ=66, DBBOX=67, AFUNCTION=68, ALPHA_OVERUNDER=69,
+    BITS_ACBUF=70, BITS_ACBUF_HW=71, BITS_STENCIL=72, CLIPPLANES=73, FOGVERTEX=74,
+    LIGHTING_TWOSIDE=76, POLYMODE=77, POLYSMOOTH=78, SCRBOX=79, TEXTURE=80, FOGPIXEL=81,
+    TEXTURE_PERSP=82, MUXPIPES=83, MULTISAMPLE=84, TEXTURE_3D=85, TEXTURE_LUT=86,
+    TEXTURE_SHARP=87, TEXTURE_DETAIL=88, STEREO_IN_WINDOW=89, BLENDCOLOR=90,
+    LIGHTING_SPOTLIGHT=91, LIGHTING_ATT2=92, AFUNCTION_MODES=93, TEXTURE_MEMORY_SIZE=94,
+    IS_IGLOO=95)
+
+#: inquiry name (without GD_) -> (value, where it comes from)
+TABLE = {
+    "XPMAX": (config.SCREEN_WIDTH, "the 1280x1024 VGX screen"),
+    "YPMAX": (config.SCREEN_HEIGHT, "the 1280x1024 VGX screen"),
+    "XMMAX": (360, "chosen: a 19-inch monitor's visible width"),
+    "YMMAX": (290, "chosen: a 19-inch monitor's visible height"),
+    "ZMIN": (ZMIN, "Programming Guide table 8-1: signed 24-bit z"),
+    "ZMAX": (ZMAX, "Programming Guide table 8-1: signed 24-bit z"),
+    "BITS_NORM_SNG_RED": (8, "Programming Guide plane table"),
+    "BITS_NORM_SNG_GREEN": (8, "Programming Guide plane table"),
+    "BITS_NORM_SNG_BLUE": (8, "Programming Guide plane table"),
+    "BITS_NORM_DBL_RED": (8, "Programming Guide plane table"),
+    "BITS_NORM_DBL_GREEN": (8, "Programming Guide plane table"),
+    "BITS_NORM_DBL_BLUE": (8, "Programming Guide plane table"),
+    "BITS_NORM_SNG_CMODE": (12, "Programming Guide plane table"),
+    "BITS_NORM_DBL_CMODE": (12, "Programming Guide plane table"),
+    "BITS_NORM_SNG_MMAP": (8, "Programming Guide plane table"),
+    "BITS_NORM_DBL_MMAP": (8, "Programming Guide plane table"),
+    "BITS_NORM_ZBUFFER": (24, "Programming Guide table 8-1"),
+    "BITS_OVER_SNG_CMODE": (8, "chosen: overlay and underlay share 8 auxiliary planes "
+                                 "(framebuffer/layers.py; overlay(3G))"),
+    "BITS_UNDR_SNG_CMODE": (8, "chosen: the 8 auxiliary planes, shared with the overlay"),
+    "BITS_PUP_SNG_CMODE": (2, "pupmode(3G): two pop-up planes"),
+    "BITS_NORM_SNG_ALPHA": (8, "Programming Guide plane table"),
+    "BITS_NORM_DBL_ALPHA": (8, "Programming Guide plane table"),
+    "BITS_CURSOR": (2, "chosen: a two-plane cursor, as curstype(3G)'s C16X2"),
+    "OVERUNDER_SHARED": (1, "chosen: overlay and underlay share planes (layers.py)"),
+    "BLEND": (1, "blendfunction(3G)"),
+    "CIFRACT": (1, "colorf(3G): only B, G, GT and GTX models lack fractional indices"),
+    "CROSSHAIR_CINDEX": (1, "chosen: the crosshair cursor is drawn with index 1"),
+    "DITHER": (1, "dither(3G)"),
+    "LINESMOOTH_CMODE": (1, "linesmooth(3G)"),
+    "LINESMOOTH_RGB": (1, "linesmooth(3G)"),
+    "LOGICOP": (1, "logicop(3G)"),
+    "NSCRNS": (1, "one screen"),
+    "NURBS_ORDER": (8, "chosen: the highest NURBS order accepted"),
+    "NBLINKS": (20, "chosen: blink(3G) entries at once"),
+    "NVERTEX_POLY": (config.MAX_POLYGON_VERTICES, "bgnpolygon(3G)"),
+    "PATSIZE_64": (1, "defpattern(3G): 64x64 patterns"),
+    "PNTSMOOTH_CMODE": (1, "pntsmooth(3G)"),
+    "PNTSMOOTH_RGB": (1, "pntsmooth(3G)"),
+    "PUP_TO_OVERUNDER": (0, "chosen: pop-up planes are separate"),
+    "READSOURCE": (1, "readsource(3G)"),
+    "READSOURCE_ZBUFFER": (1, "readsource(3G) SRC_ZBUFFER"),
+    "STEREO": (0, "no stereo buffers"),
+    "SUBPIXEL_LINE": (1, "subpixel(3G)"),
+    "SUBPIXEL_PNT": (1, "subpixel(3G)"),
+    "SUBPIXEL_POLY": (1, "subpixel(3G)"),
+    "TRIMCURVE_ORDER": (8, "chosen: the highest trim-curve order accepted"),
+    "WSYS": (1, "GD_WSYS_4S: the 4Sight window system"),
+    "ZDRAW_GEOM": (1, "zdraw(3G)"),
+    "ZDRAW_PIXELS": (1, "zdraw(3G)"),
+    "SCRNTYPE": (0, "GD_SCRNTYPE_WM: a window-manager screen"),
+    "TEXTPORT": (1, "textport(3G)"),
+    "NMMAPS": (16, "multimap(3G): 16 maps of 256 entries"),
+    "FRAMEGRABBER": (0, "no frame grabber"),
+    "TIMERHZ": (60, "chosen: TIMER devices count 60 Hz ticks"),
+    "DBBOX": (0, "no dial and button box attached"),
+    "AFUNCTION": (1, "afunction(3G)"),
+    "ALPHA_OVERUNDER": (0, "no alpha in the overlay/underlay planes"),
+    "BITS_ACBUF": (16, "acsize(3G): 16 signed bits per component"),
+    "BITS_ACBUF_HW": (16, "acsize(3G): the VGX accumulates in hardware"),
+    "BITS_STENCIL": (8, "stensize(3G); Heidmann 1991"),
+    "CLIPPLANES": (6, "clipplane(3G)"),
+    "FOGVERTEX": (1, "fogvertex(3G) per-vertex fog"),
+    "LIGHTING_TWOSIDE": (1, "lmdef(3G) TWOSIDE"),
+    "POLYMODE": (1, "polymode(3G)"),
+    "POLYSMOOTH": (0, "chosen: polysmooth(3G) is kept as state, polygons drawn aliased"),
+    "SCRBOX": (1, "scrbox(3G)"),
+    "TEXTURE": (1, "texdef2d(3G): VGX texture mapping"),
+    "FOGPIXEL": (0, "no per-pixel fog"),
+    "TEXTURE_PERSP": (0, "chosen, as before: no perspective-correct texture flag"),
+    "MUXPIPES": (0, "one pipe"),
+    "MULTISAMPLE": (0, "no multisample buffer"),
+    "TEXTURE_3D": (0, "RealityEngine only"),
+    "TEXTURE_LUT": (0, "RealityEngine only"),
+    "TEXTURE_SHARP": (0, "RealityEngine only"),
+    "TEXTURE_DETAIL": (0, "RealityEngine only"),
+    "STEREO_IN_WINDOW": (0, "no stereo"),
+    "BLENDCOLOR": (0, "blendcolor(3G) lists the VGX among the models without it"),
+    "LIGHTING_SPOTLIGHT": (1, "lmdef(3G) SPOTDIRECTION/SPOTLIGHT"),
+    "LIGHTING_ATT2": (1, "lmdef(3G) ATTENUATION2"),
+    "AFUNCTION_MODES": (1, "chosen: every afunction(3G) comparison"),
+    "TEXTURE_MEMORY_SIZE": (1 << 20, "chosen: 1 MB of texture memory (IRIX 6 inquiry)"),
+    "IS_IGLOO": (0, "a real IRIS GL, not the IRIS GL-on-OpenGL layer (IRIX 6 inquiry)"),
+}
+
+#: inquiry value -> answer
+VALUES = {_GD[k]: v for k, (v, _) in TABLE.items()}
