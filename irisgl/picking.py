@@ -3,7 +3,7 @@ endpick, endselect, picksize, the name stack (initnames, loadname,
 pushname, popname), gethitcode/clearhitcode, mapw/mapw2; feedback is not
 emulated (docs/picking.md).
 
-The C hit buffer ``short buffer[]`` follows the porting conventions:
+The C hit buffer ``short buffer[]`` follows docs/picking.md:
 ``pick(buffer, numnames)`` with a writable numpy array is filled in place
 at ``n = endpick(buffer)``; with the buffer left out, ``pick(numnames)``
 and ``n, buffer = endpick()`` (a new int16 array of numnames elements).

@@ -281,7 +281,7 @@ frontface = _mode_setter("frontface", "frontface", boolean,
                          "frontface(3G): TRUE removes counter-clockwise polygons.")
 subpixel = _mode_setter("subpixel", "subpixel", boolean,
                         "subpixel(3G): FALSE (VGX default) snaps vertices to pixel "
-                        "centres; TRUE keeps sub-pixel positions (Decision 5).")
+                        "centres; TRUE keeps sub-pixel positions (docs/decisions.md).")
 concave = _mode_setter("concave", "concave", boolean,
                        "concave(3G): TRUE makes concave polygons draw correctly.")
 
@@ -289,7 +289,7 @@ concave = _mode_setter("concave", "concave", boolean,
 @_export
 @glcall
 def shademodel(mode):
-    """shademodel(3G): FLAT (colour of the last vertex, Decision 6) or GOURAUD."""
+    """shademodel(3G): FLAT (colour of the last vertex, docs/decisions.md) or GOURAUD."""
     w = win("shademodel")
     m = token("shademodel", mode, {K.FLAT: "FLAT", K.GOURAUD: "GOURAUD"}, "shade model")
     machine.state_change(w)

@@ -31,7 +31,7 @@ def ramp_line(y, z0=1.0, z1=-1.0):
 
 
 def screen_z(x, z0=1.0, z1=-1.0):
-    """Window z of pixel x of ramp_line (depth mapping, Decision 4)."""
+    """Window z of pixel x of ramp_line (the depth mapping of lsetdepth(3G))."""
     zn = -(z0 + (z1 - z0) * x / 64.0)           # eye z -> normalized device z
     return (ZMAX + ZMIN) / 2 + zn * (ZMAX - ZMIN) / 2
 

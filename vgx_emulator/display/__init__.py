@@ -2,7 +2,7 @@
 
 RGB mode: the colour words are unpacked (0xAABBGGRR).  Colour-map mode: the
 indices go through the colour map at scan-out, so ``mapcolor`` recolours
-pixels already drawn (reference 15, 21); in multimap mode through the small
+pixels already drawn (mapcolor(3G)); in multimap mode through the small
 map setmap(3G) selected (colormaps.py).  The pop-up, overlay and underlay
 framebuffers are composed per pixel by the rule of overlay(3G) and
 underlay(3G): pop-up if its index is non-zero, else overlay if it has
