@@ -24,7 +24,7 @@ class FramesDone(BaseException):
     """Raised by the runner's frame hook once enough frames were drawn."""
 
 
-def run_program(path, frames=1, argv=None, menu=None):
+def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, every=1):
     """Run ``path`` headless for at most ``frames`` frames; return the
     (h, w, 3) uint8 image it left on the screen (None if it drew nothing).
 
@@ -34,7 +34,11 @@ def run_program(path, frames=1, argv=None, menu=None):
     program queues RIGHTMOUSE, a right-button press and release is queued
     whenever it finishes a frame or waits for input, as a user would click;
     the run then lasts until every answer was taken (at most 10 extra
-    frames per answer)."""
+    frames per answer).
+
+    ``trace``: a vgx_emulator.trace.Trace to install for the run;
+    ``collect``: a list that receives the image of every ``every``-th frame
+    (frames 1, 1 + every, ...: an animation, display/anim.py)."""
     from irisgl._current import machine
     from . import menus
     machine.reset()
@@ -59,6 +63,8 @@ def run_program(path, frames=1, argv=None, menu=None):
 
     def on_frame(m, win):
         drawn["n"] += 1
+        if collect is not None and (drawn["n"] - 1) % every == 0:
+            collect.append(m.image(win))
         if drawn["n"] >= frames and (not menus.pending(machine)
                                      or drawn["n"] >= frames + 10 * answers):
             raise FramesDone()
@@ -75,6 +81,8 @@ def run_program(path, frames=1, argv=None, menu=None):
 
     machine.frame_hook = on_frame
     machine.events.wait_hook = on_wait
+    if trace is not None:
+        trace.install(machine)
     old_argv = sys.argv
     sys.argv = [str(path)] + argv
     try:
@@ -88,6 +96,48 @@ def run_program(path, frames=1, argv=None, menu=None):
         sys.argv = old_argv
         machine.frame_hook = None
         machine.events.wait_hook = None
+        if trace is not None:
+            trace.uninstall()
+    if machine.current is not None:
+        return machine.image(machine.current)
+    return machine.last_image
+
+
+def run_window(path, argv=None, fps=30.0, frames=None):
+    """Run ``path`` in real windows (vgx_emulator/display/tkwindow.py) until
+    it ends, its last window is closed or (``frames``) enough frames were
+    drawn; return the (h, w, 3) image it left.  Raises ``NoDisplay`` when
+    there is no display to open a window on."""
+    from irisgl._current import machine
+    from .display.tkwindow import TkDisplay
+    machine.reset()
+    display = TkDisplay(machine, fps)
+    drawn = {"n": 0}
+
+    def on_frame(m, win):
+        display.frame(m, win)
+        drawn["n"] += 1
+        if frames is not None and drawn["n"] >= frames:
+            raise FramesDone()
+
+    machine.frame_hook = on_frame
+    machine.events.wait_hook = display.wait
+    machine.menus.chooser = display.popup
+    old_argv = sys.argv
+    sys.argv = [str(path)] + list(argv or [])
+    try:
+        runpy.run_path(str(path), run_name="__main__")
+    except (FramesDone, QueueExhausted):
+        pass
+    except SystemExit as e:
+        if e.code not in (0, None):
+            raise
+    finally:
+        sys.argv = old_argv
+        machine.frame_hook = None
+        machine.events.wait_hook = None
+        machine.menus.chooser = None
+        display.close_all()
     if machine.current is not None:
         return machine.image(machine.current)
     return machine.last_image
@@ -101,6 +151,11 @@ def main(argv=None):
     ap.add_argument("--menu", default=None,
                     help="answers of the program's dopup calls, one per call, comma-separated:"
                          " item numbers (title not counted), 2.1 = item 1 of item 2's submenu")
+    ap.add_argument("--window", action="store_true",
+                    help="show the program's windows on the display and feed them real input")
+    ap.add_argument("--fps", type=float, default=30.0,
+                    help="with --window: at most this many frames a second (default 30; "
+                         "0 = unpaced)")
     a, rest = ap.parse_known_args(argv)
     a.args = [x for x in rest if x != "--"]
     if a.frames < 1:
@@ -115,6 +170,19 @@ def main(argv=None):
     if not prog.is_file():
         ap.error(f"no such program: {prog}")
     t0 = time.perf_counter()
+    if a.window:
+        from .display.tkwindow import NoDisplay
+        try:
+            img = run_window(prog, a.args, a.fps,
+                             frames=a.frames if "--frames" in (argv or sys.argv) else None)
+        except NoDisplay as e:
+            print(f"vgx-run: no display for --window ({e}); run without --window to "
+                  "run headless", file=sys.stderr)
+            return 2
+        if img is None or a.out is None:
+            return 0
+        write_png(Path(a.out), img)
+        return 0
     img = run_program(prog, a.frames, a.args, menu=a.menu)
     if img is None:
         print(f"vgx-run: {prog} opened no window; nothing saved", file=sys.stderr)

@@ -27,6 +27,7 @@ from .. import config
 from ..events import INPUTCHANGE, MOUSEX, MOUSEY, REDRAW
 
 LEFTMOUSE, MIDDLEMOUSE, RIGHTMOUSE = 103, 102, 101
+C16X1, C16X2, C32X1, C32X2, CCROSS = 0, 1, 2, 3, 4          # curstype(3G)
 KEYBD, WINQUIT, WINSHUT = 513, 542, 546
 
 #: Tk keysym -> IRIS GL raw key device (device.h)
@@ -52,13 +53,13 @@ class TkDisplay:
     (``popup``); it opens and closes real windows as the program's windows
     come and go (``sync``)."""
 
-    def __init__(self, machine, fps=30.0):
+    def __init__(self, machine, fps=30.0, screen=None):
         try:
             import tkinter
         except ImportError as e:            # a Python built without Tk
             raise NoDisplay(f"tkinter is not available ({e})") from None
         try:
-            self.root = tkinter.Tk()
+            self.root = tkinter.Tk(screenName=screen)
         except tkinter.TclError as e:
             raise NoDisplay(str(e)) from None
         self.tk = tkinter
@@ -68,6 +69,7 @@ class TkDisplay:
         self.views = {}                     # gid -> _View
         self.last_shown = 0.0
         self.quit = False
+        self.cursors = {}                   # defcursor glyph -> Tk cursor spec
 
     # -- the machine's side ---------------------------------------------
     def sync(self):
@@ -80,6 +82,7 @@ class TkDisplay:
             v = self.views.get(gid)
             if v is None or v.win is not win:
                 if v is not None:
+                    self.views.pop(gid)
                     v.top.destroy()
                 self.views[gid] = _View(self, win)
 
@@ -111,6 +114,32 @@ class TkDisplay:
                 raise SystemExit(0)
             time.sleep(0.005)
 
+    def bitmap_cursor(self, index, typ, words, origin):
+        """A Tk cursor for a defcursor(3G) glyph: 16x16 (16 shorts) or 32x32
+        (32 longs), rows bottom to top, the leftmost pixel in the high bit;
+        written once as an X bitmap (XBM: rows top to bottom, leftmost pixel
+        in the low bit)."""
+        import tempfile
+        key = (index, typ, tuple(int(w) for w in words), origin)
+        if key in self.cursors:
+            return self.cursors[key]
+        n = 32 if typ in (C32X1, C32X2) else 16
+        rows = [int(w) & ((1 << n) - 1) for w in list(words)[:n]] + [0] * n
+        rows = rows[:n][::-1]
+        data = []
+        for r in rows:
+            bits = int(format(r, f"0{n}b")[::-1], 2)          # leftmost pixel -> bit 0
+            data += [(bits >> (8 * k)) & 0xFF for k in range(n // 8)]
+        hx, hy = origin[0], n - 1 - origin[1]
+        text = (f"#define c_width {n}\n#define c_height {n}\n#define c_x_hot {hx}\n"
+                f"#define c_y_hot {hy}\nstatic unsigned char c_bits[] = {{"
+                + ",".join(f"0x{b:02x}" for b in data) + "};\n")
+        f = tempfile.NamedTemporaryFile("w", suffix=".xbm", delete=False)
+        f.write(text)
+        f.close()
+        self.cursors[key] = f"@{f.name} black"
+        return self.cursors[key]
+
     def pump(self):
         """Let Tk deliver what the window system has for the program."""
         try:
@@ -121,9 +150,9 @@ class TkDisplay:
             raise SystemExit(0)
 
     def close_all(self):
-        for v in list(self.views.values()):
+        views, self.views = list(self.views.values()), {}
+        for v in views:
             v.top.destroy()
-        self.views.clear()
         try:
             self.root.destroy()
         except self.tk.TclError:
@@ -134,7 +163,7 @@ class TkDisplay:
         """Pop menu ``pup`` up at the pointer; the path of item numbers the
         user chose through submenus, or None when nothing was chosen."""
         chosen = {"path": None, "done": False}
-        menu = self._build(pup, (), chosen)
+        menu = self._build(pup, (), chosen, self.root)
         if menu is None:
             return None
         x, y = self.root.winfo_pointerxy()
@@ -150,21 +179,22 @@ class TkDisplay:
         self.machine.events.buttons[RIGHTMOUSE] = 0
         return chosen["path"]
 
-    def _build(self, pup, prefix, chosen):
+    def _build(self, pup, prefix, chosen, master):
         """A Tk menu for IRIS GL menu ``pup``: its title, items, separator
         lines (%l), submenus (%m) and greyed entries (setpup PUP_GREY)."""
         from ..menus import PUP_GREY
         m = self.machine.menus.menus.get(pup)
         if m is None:
             return None
-        menu = self.tk.Menu(self.root, tearoff=0)
+        menu = self.tk.Menu(master, tearoff=0)
         if m.title:
             menu.add_command(label=m.title, state="disabled")
             menu.add_separator()
         for i, item in enumerate(m.items, start=1):
             path = prefix + (i,)
             state = "disabled" if item.mode & PUP_GREY else "normal"
-            sub = self._build(item.submenu, path, chosen) if item.submenu is not None else None
+            sub = (self._build(item.submenu, path, chosen, menu)
+                   if item.submenu is not None else None)
             if sub is not None:
                 menu.add_cascade(label=item.label, menu=sub, state=state)
             else:
@@ -194,14 +224,12 @@ class _View:
         self.d, self.win = display, win
         self.top = tk.Toplevel(display.root)
         self.top.title(getattr(win, "title", None) or win.name or "IRIS GL")
-        self.size = (win.width, win.height)
-        x, y = win.origin
-        self.top.geometry(f"{win.width}x{win.height}+{x}+"
-                          f"{config.SCREEN_HEIGHT - y - win.height}")
+        self.placed = None
+        self.follow()
         self.label = tk.Label(self.top, bd=0, highlightthickness=0, cursor="crosshair")
         self.label.pack(fill="both", expand=True)
         self.photo = None
-        self.shown_frame = None
+        self.shown_cursor = None
         t = self.top
         t.protocol("WM_DELETE_WINDOW", self.on_close)
         for b in (1, 2, 3):
@@ -212,6 +240,7 @@ class _View:
         t.bind("<KeyRelease>", lambda e: self.on_key(e, 0))
         t.bind("<Configure>", self.on_configure)
         t.bind("<Expose>", self.on_expose)
+        t.bind("<Destroy>", self.on_destroy)
         t.bind("<FocusIn>", lambda e: self.d.machine.events.post(INPUTCHANGE, self.win.gid))
         t.bind("<FocusOut>", lambda e: self.d.machine.events.post(INPUTCHANGE, 0))
 
@@ -220,6 +249,8 @@ class _View:
         m, win = self.d.machine, self.win
         if win.gid not in m.windows:
             return
+        self.follow()
+        self.cursor()
         img = m.image(win)
         h, w = img.shape[:2]
         header = f"P6 {w} {h} 255 ".encode()
@@ -229,6 +260,25 @@ class _View:
             self.label.configure(image=self.photo)
         else:
             self.photo.configure(data=data, format="PPM")
+
+    def cursor(self):
+        """The cursor calls (curson, cursoff, curstype, defcursor, setcursor):
+        hidden, the cross-hair, or the defined glyph as an X bitmap cursor."""
+        c = self.d.machine.system.get("cursor")
+        name = "left_ptr"
+        if c is not None:
+            if not c.get("visible", True):
+                name = "none"
+            else:
+                typ, words = c["glyphs"].get(c["index"], (0, None))
+                if typ == CCROSS:
+                    name = "crosshair"
+                elif words is not None:
+                    name = self.d.bitmap_cursor(c["index"], typ, words,
+                                                c["origins"].get(c["index"], (0, 0)))
+        if name != self.shown_cursor:
+            self.shown_cursor = name
+            self.label.configure(cursor=name)
 
     # -- events -----------------------------------------------------------
     def _screen(self, e):
@@ -256,18 +306,40 @@ class _View:
             ev.enter(KEYBD, ord(e.char))
 
     def on_configure(self, e):
-        if e.widget is not self.top:
+        """Moved or resized by the user: the window's origin (getorigin) and,
+        for a new size, its banks follow, and REDRAW is queued."""
+        if e.widget is not self.top or e.width <= 1 or e.height <= 1:
             return
-        size = (e.width, e.height)
-        if size != self.size and e.width > 1 and e.height > 1:
-            self.size = size
-            resize = getattr(self.d.machine, "resize_window", None)
-            if resize is not None:
-                resize(self.win, e.width, e.height)
-            self.d.machine.events.post(REDRAW, self.win.gid, coalesce=True)
+        win = self.win
+        x, y = e.x, config.SCREEN_HEIGHT - e.y - e.height
+        if (x, y, e.width, e.height) == self.placed:
+            return
+        self.placed = (x, y, e.width, e.height)
+        resized = (e.width, e.height) != (win.width, win.height)
+        self.d.machine.state_change(win)
+        win.resize(x, y, e.width, e.height)
+        if resized:
+            self.d.machine.events.post(REDRAW, win.gid, coalesce=True)
+
+    def follow(self):
+        """The program moved or reshaped its window (winposition, winmove,
+        fullscrn): the real window follows."""
+        win = self.win
+        x, y = win.origin
+        want = (x, y, win.width, win.height)
+        if want != self.placed:
+            self.placed = want
+            self.top.geometry(f"{win.width}x{win.height}+{x}+"
+                              f"{config.SCREEN_HEIGHT - y - win.height}")
 
     def on_expose(self, e):
         self.d.machine.events.post(REDRAW, self.win.gid, coalesce=True)
+
+    def on_destroy(self, e):
+        """The window was destroyed from outside (not by winclose): as a close."""
+        if e.widget is self.top and self.win.gid in self.d.views:
+            self.d.views.pop(self.win.gid, None)
+            self.d.quit = True
 
     def on_close(self):
         ev = self.d.machine.events
