@@ -161,11 +161,50 @@ def _replay(obj, depth):
             op[1](*op[2])
 
 
+def _nesting(obj):
+    """How deep the objects called from obj nest (obj alone: 0), or None
+    when obj reaches itself (a recursive object)."""
+    depth, path = {}, set()
+
+    def walk(o):
+        if o in path:
+            return None
+        if o in depth:
+            return depth[o]
+        ob = machine.objects.get(o)
+        if ob is None:
+            return 0
+        path.add(o)
+        d = 0
+        for it in ob.items:
+            if it[0] == "call" and it[1] == "callobj" and it[3]:
+                try:
+                    inner = walk(int(it[3][0]))
+                except (TypeError, ValueError):
+                    continue
+                if inner is None:
+                    return None
+                d = max(d, inner + 1)
+        path.discard(o)
+        depth[o] = d
+        return d
+    return walk(obj)
+
+
 @glcall
 def callobj(obj):
-    """callobj(3G): execute obj (objects may call objects)."""
+    """callobj(3G): execute obj (objects may call objects).  A recursive
+    object, or one nesting deeper than the machine's limit, raises GLError
+    before anything of it runs (nothing drawn, no matrix changed)."""
     win("callobj")
-    _replay(integer("callobj", obj, "object"), 0)
+    o = integer("callobj", obj, "object")
+    d = _nesting(o)
+    if d is None:
+        fail("callobj", f"object {o} calls itself (directly or through other objects)",
+             "objects may call other objects, not themselves")
+    if d > O.MAX_DEPTH:
+        fail("callobj", f"objects nested {d} deep", f"at most {O.MAX_DEPTH}")
+    _replay(o, 0)
 
 
 @glcall

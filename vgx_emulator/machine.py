@@ -61,6 +61,11 @@ class Window:
         self.saved_geometry = None     # fullscrn: (x, y, w, h) to restore
         self.attrib_stack = []         # pushattributes(3G)
 
+    def _repr_png_(self):
+        """Jupyter: what the screen shows of the window (planes.py)."""
+        from .planes import window_picture
+        return window_picture(self).to_png()
+
     def resize(self, x, y, width, height):
         """Move and reshape (winposition, fullscrn): the banks are rebuilt at
         the new size in the same configuration, keeping the overlapping
@@ -114,6 +119,8 @@ class VGX:
         self.menus = MenuTable()       # defpup/newpup menus and scripted dopup answers
         self.linestyles = {0: 0xFFFF}  # deflinestyle: index -> 16-bit pattern (all windows)
         self.frame_hook = None         # runner: called at each frame end
+        self.trace_hook = None         # trace.py: (machine, win, event, *detail) at pass ends
+        self.call_hook = None          # trace.py: (name, f, args) runs each top-level call
         self.last_image = None         # what the last closed window showed
         self.picking = None            # pick/gselect session (vgx_emulator/picking.py)
         self.picksize = (10, 10)       # picksize(3G)
@@ -132,7 +139,7 @@ class VGX:
 
     def winopen(self, name):
         x, y = self.pref.get("origin", (0, 0))
-        w, h = self.pref.get("size", config.DEFAULT_WINDOW_SIZE)
+        w, h = self.pref["size"] if "size" in self.pref else self._swept_size()
         win = Window(self.next_gid, name, x, y, w, h)
         self.next_gid += 1
         # the default projection maps window pixels: ortho2(-0.5, w-0.5, -0.5, h-0.5)
@@ -151,6 +158,20 @@ class VGX:
         self.events.post(REDRAW, win.gid, coalesce=True)
         return win.gid
 
+    def _swept_size(self):
+        """No prefsize: the size a user could sweep out, the default size
+        shaped by keepaspect and bounded by minsize/maxsize (minsize(3G))."""
+        sw, sh = config.SCREEN_WIDTH, config.SCREEN_HEIGHT
+        w, h = config.DEFAULT_WINDOW_SIZE
+        if "aspect" in self.pref:
+            ax, ay = self.pref["aspect"]
+            h = max(1, round(w * ay / ax))
+            if h > sh:
+                w, h = max(1, round(sh * ax / ay)), sh
+        lo = self.pref.get("minsize", (1, 1))
+        hi = self.pref.get("maxsize", (sw, sh))
+        return (min(max(w, lo[0]), hi[0], sw), min(max(h, lo[1]), hi[1], sh))
+
     def winclose(self, gid):
         win = self.windows[gid]
         self._flush(win)
@@ -168,6 +189,13 @@ class VGX:
         self.current = self.windows[gid]
 
     def gexit(self):
+        """gexit(3G): every window closed, graphics ended; an object still
+        open is closed as closeobj would (it keeps what was recorded)."""
+        from . import objects as O
+        if self.recording is not None:
+            ob = self.objects[self.recording]
+            ob.ops = O.compile_items(ob.items)
+            self.recording = None
         for gid in list(self.windows):
             self.winclose(gid)
         self.events.reset_all()
@@ -204,6 +232,8 @@ class VGX:
         self._flush(win)
         win.frames += 1
         self.maps.tick()                   # cyclemap/blink: retraces per frame point
+        if self.trace_hook is not None:
+            self.trace_hook(self, win, "frame")
         if self.frame_hook is not None:
             self.frame_hook(self, win)
 
@@ -261,6 +291,8 @@ class VGX:
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
             scan.scan_batch(work, key, planes, ip, cull, not st.subpixel, tex, zmaxima)
+            if self.trace_hook is not None:
+                self.trace_hook(self, win, "draw")
         if b.open is not None:
             b.keep_open_primitive()
         else:
@@ -623,6 +655,8 @@ class VGX:
             else:
                 fill_pattern(t, r[0], r[1], r[2], r[3], word, mask, pat[1], pat[0],
                              win.origin[0], win.origin[1])
+        if self.trace_hook is not None:
+            self.trace_hook(self, win, "clear")
 
     def sclear(self, win, sval):
         """sclear(3G): stencil := sval within the planes, under swritemask,
@@ -635,6 +669,8 @@ class VGX:
         smax = (1 << fb.stencil_planes) - 1
         fill(fb.stencil, r[0], r[1], r[2], r[3], np.uint8(sval & smax),
              np.uint8(win.st.swritemask & smax))
+        if self.trace_hook is not None:
+            self.trace_hook(self, win, "sclear", sval & smax)
 
     def zclear(self, win):
         self._flush(win)
@@ -645,6 +681,8 @@ class VGX:
         fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], ZMAX, m)
         if m:
             win.fb.z_written(r if m == 0xFFFFFF else None, ZMAX)
+        if self.trace_hook is not None:
+            self.trace_hook(self, win, "zclear")
 
     def czclear(self, win, cval, zval):
         self._flush(win)
@@ -659,6 +697,8 @@ class VGX:
         z = min(max(int(zval), ZMIN), ZMAX)
         fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], z, 0xFFFFFF)
         win.fb.z_written(r, z)
+        if self.trace_hook is not None:
+            self.trace_hook(self, win, "czclear")
 
     @staticmethod
     def colour_word(st, colour):
@@ -681,6 +721,8 @@ class VGX:
             mask = st.cmask & (0xFFFFFFFF if st.rgb else 0xFFF)
             for t in self._targets(win):
                 A.give_back(fb.accum, t, v, mask, not st.rgb, r[0], r[1], r[2], r[3])
+            if self.trace_hook is not None:
+                self.trace_hook(self, win, "acbuf", op, v)
             return
         if op in (A.AC_ACCUMULATE, A.AC_CLEAR_ACCUMULATE):
             value = min(max(value, -256.0), 256.0)
@@ -688,6 +730,8 @@ class VGX:
         else:
             src = _DUMMY_C
         A.accumulate(fb.accum, src, op, float(value), r[0], r[1], r[2], r[3])
+        if self.trace_hook is not None:
+            self.trace_hook(self, win, "acbuf", op, float(value))
 
     # ------------------------------------------------------------------
     # reading pixels (reference 11)
@@ -724,8 +768,8 @@ class VGX:
         """lrectwrite/rectwrite: words (h, w), row 0 at y1 (Decision 11)."""
         from .scan.spans import pixel_kernel
         self._flush(win)
-        if self._picking(win):
-            return                  # nothing is drawn in picking/selecting mode
+        if self._picking(win) or self.clear_rect(win) is None:
+            return      # picking/selecting, or viewport ∩ scrmask ∩ window is empty
         key, planes, ip = self._raster_setup(win, None, filled=False)
         key = key._replace(ztest=False, zwrite=False, stencil=False, pattern=False,
                            gouraud=False, twoside=False)

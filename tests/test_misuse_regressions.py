@@ -1,0 +1,99 @@
+"""Defects found by fuzzing from outside, each reproduced in a few lines:
+every misuse a GLError naming the call, with the state unchanged."""
+import numpy as np
+import pytest
+
+from irisgl import *
+from irisgl._current import machine
+
+
+def test_pixel_writes_with_empty_viewport_do_nothing(open_window):
+    """viewport ∩ scrmask ∩ window empty: lrectwrite and rectcopy write no
+    pixel (they raised TypeError before)."""
+    open_window(32, 32)
+    cpack(0xFF112233)
+    clear()
+    before = lrectread(0, 0, 31, 31).copy()
+    viewport(40, 50, 40, 50)
+    lrectwrite(0, 0, 1, 1, np.full(4, 0xFFFFFFFF, np.uint32))
+    rectcopy(0, 0, 3, 3, 5, 5)
+    assert np.array_equal(lrectread(0, 0, 31, 31), before)
+
+
+def test_queries_in_an_open_object_answer_at_once(open_window):
+    open_window(40, 30)
+    makeobj(3)
+    assert getsize() == (40, 30)
+    assert getmmode() == MSINGLE
+    assert getzbuffer() == 0
+    assert getviewport() == (0, 39, 0, 29)
+    assert getmatrix().shape == (4, 4)
+    closeobj()
+    assert not any(it[1].startswith("get") for it in machine.objects[3].items
+                   if it[0] == "call")
+
+
+def test_gexit_closes_an_open_object(open_window):
+    open_window(16, 16)
+    makeobj(5)
+    cpack(0xFF0000FF)
+    gexit()
+    open_window(16, 16)
+    assert getopenobj() == -1
+    cpack(0xFF00FF00)                 # goes to the window, not into object 5
+    clear()
+    assert int(lrectread(0, 0, 0, 0)[0, 0]) == 0xFF00FF00
+    assert isobj(5)
+
+
+def test_recursive_object_raises_before_anything_runs(open_window):
+    open_window(16, 16)
+    ortho2(-0.5, 15.5, -0.5, 15.5)
+    makeobj(9)
+    translate(1, 0, 0)
+    cpack(0xFFFFFFFF)
+    rectf(0, 0, 3, 3)
+    callobj(9)
+    closeobj()
+    m = getmatrix().copy()
+    with pytest.raises(GLError, match="^callobj: object 9 calls itself"):
+        callobj(9)
+    assert np.array_equal(getmatrix(), m)
+    assert not lrectread(0, 0, 15, 15).any()
+
+
+def test_mutual_recursion_is_found_too(open_window):
+    open_window(8, 8)
+    makeobj(1)
+    callobj(2)
+    closeobj()
+    makeobj(2)
+    callobj(1)
+    closeobj()
+    with pytest.raises(GLError, match="^callobj: object 1 calls itself"):
+        callobj(1)
+
+
+def test_nesting_within_the_limit_runs(open_window):
+    open_window(8, 8)
+    for o in range(1, 11):
+        makeobj(o)
+        if o > 1:
+            callobj(o - 1)
+        else:
+            translate(1, 0, 0)
+        closeobj()
+    m0 = getmatrix().copy()
+    callobj(10)
+    got = getmatrix().copy()
+    loadmatrix(m0)
+    translate(1, 0, 0)
+    assert np.array_equal(got, getmatrix())
+
+
+def test_setdepth_and_getdepth_errors_name_themselves(open_window):
+    open_window(8, 8)
+    with pytest.raises(GLError, match="^setdepth: "):
+        setdepth("near", 0)
+    setdepth(-100, 100)
+    assert getdepth() == (-100, 100)
