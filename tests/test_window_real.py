@@ -257,3 +257,32 @@ def test_a_program_that_queues_winquit_gets_it_on_close(xserver, tmp_path):
         assert "WINQUIT 1 True" in p.proc.stdout.read()
     finally:
         p.kill()
+
+
+def test_single_buffered_drawing_shows_as_it_happens(xserver, tmp_path):
+    """No frame point at all: a single-buffered program's drawing reaches the
+    screen while the program is still busy (bounded by the frame rate)."""
+    prog = tmp_path / "busy.py"
+    prog.write_text(
+        "import time\n"
+        "from irisgl import *\n"
+        "prefsize(64, 48); winopen('busy'); RGBmode(); gconfig()\n"
+        "ortho2(-0.5, 63.5, -0.5, 47.5)\n"
+        "cpack(0xff00ff00)\n"
+        "t0 = time.time()\n"
+        "while time.time() - t0 < 12:\n"
+        "    rectf(-1, -1, 64, 48)\n"
+        "    time.sleep(0.01)\n")
+    p = Program(xserver, prog, name="busy")
+    try:
+        t0 = time.time()
+        while time.time() - t0 < 8:
+            if (p.shot() == (0, 255, 0)).all():
+                break
+            time.sleep(0.2)
+        shot = p.shot()
+        assert (shot == (0, 255, 0)).all(), (np.unique(shot.reshape(-1, 3), axis=0),
+                                             p.proc.poll())
+        assert p.proc.poll() is None                   # still drawing, never swapped
+    finally:
+        p.kill()

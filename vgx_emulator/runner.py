@@ -4,11 +4,14 @@ it drew (porting conventions 4).
 The program runs as ``__main__``.  Every frame point (swapbuffers, gflush,
 finish) is counted; after ``--frames`` of them the program is stopped.  A
 ``qread`` on an empty queue first gets a REDRAW for the current window if
-the program asked for REDRAW events and fewer frames than asked were drawn
-(one per frame, so a program that never draws cannot loop); otherwise it
+the program asked for REDRAW events and drew at least one frame but fewer
+than asked (one per frame, so a program that never draws cannot loop); otherwise it
 ends the program cleanly.  What the screen shows of the current window (or
 of the last window closed) is then saved as a PNG.  ``--menu 3,2.1`` answers
-the program's dopup calls (docs/text-and-menus.md).
+the program's dopup calls (docs/text-and-menus.md).  ``--out x.gif``
+(or ``.mp4``) saves every (``--every K``: every K-th) frame as an animation;
+``--trace DIR`` pictures every bank after every pass of one frame
+(docs/trace.md).
 """
 import argparse
 import runpy
@@ -63,7 +66,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
 
     def on_frame(m, win):
         drawn["n"] += 1
-        if collect is not None and (drawn["n"] - 1) % every == 0:
+        if collect is not None and drawn["n"] % every == 0:
             collect.append(m.image(win))
         if drawn["n"] >= frames and (not menus.pending(machine)
                                      or drawn["n"] >= frames + 10 * answers):
@@ -74,8 +77,11 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         if click():
             return
         w = machine.current
+        # only to a program that marks frames (swapbuffers/gflush/finish): a
+        # single-buffered one drawing on input would have its picture redrawn
+        # by an expose no real window got (mapw(3G), 4Dgifts mapw.c)
         if (w is not None and REDRAW in machine.events.queued
-                and drawn["n"] < frames and drawn["posted_at"] != drawn["n"]):
+                and 0 < drawn["n"] < frames and drawn["posted_at"] != drawn["n"]):
             drawn["posted_at"] = drawn["n"]
             machine.events.enter(REDRAW, w.gid)
 
@@ -123,6 +129,7 @@ def run_window(path, argv=None, fps=30.0, frames=None):
     machine.frame_hook = on_frame
     machine.events.wait_hook = display.wait
     machine.menus.chooser = display.popup
+    machine.display_hook = display.drawn
     old_argv = sys.argv
     sys.argv = [str(path)] + list(argv or [])
     try:
@@ -137,6 +144,7 @@ def run_window(path, argv=None, fps=30.0, frames=None):
         machine.frame_hook = None
         machine.events.wait_hook = None
         machine.menus.chooser = None
+        machine.display_hook = None
         display.close_all()
     if machine.current is not None:
         return machine.image(machine.current)
@@ -146,7 +154,16 @@ def run_window(path, argv=None, fps=30.0, frames=None):
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="vgx-run", description=__doc__.splitlines()[0])
     ap.add_argument("program", help="a ported IRIS GL program (.py)")
-    ap.add_argument("--out", default=None, help="PNG to write (default: PROGRAM.png)")
+    ap.add_argument("--out", default=None,
+                    help="PNG to write (default: PROGRAM.png); .gif or .mp4: an animation "
+                         "of the frames drawn")
+    ap.add_argument("--every", type=int, default=1, metavar="K",
+                    help="with --out .gif/.mp4: keep every K-th frame (default 1)")
+    ap.add_argument("--trace", default=None, metavar="DIR",
+                    help="write a picture of every bank after every pass of one frame "
+                         "and DIR/index.html (docs/trace.md)")
+    ap.add_argument("--trace-frame", type=int, default=None, metavar="N",
+                    help="with --trace: the frame traced (default: the last, --frames)")
     ap.add_argument("--frames", type=int, default=1, help="frames to let it draw (default 1)")
     ap.add_argument("--menu", default=None,
                     help="answers of the program's dopup calls, one per call, comma-separated:"
@@ -155,7 +172,7 @@ def main(argv=None):
                     help="show the program's windows on the display and feed them real input")
     ap.add_argument("--fps", type=float, default=30.0,
                     help="with --window: at most this many frames a second (default 30; "
-                         "0 = unpaced)")
+                         "0 = unpaced); with --out .gif/.mp4: the animation's pace")
     a, rest = ap.parse_known_args(argv)
     a.args = [x for x in rest if x != "--"]
     if a.frames < 1:
@@ -170,6 +187,9 @@ def main(argv=None):
     if not prog.is_file():
         ap.error(f"no such program: {prog}")
     t0 = time.perf_counter()
+    if a.window and (a.trace is not None or
+                     (a.out is not None and Path(a.out).suffix.lower() in (".gif", ".mp4"))):
+        ap.error("--trace and .gif/.mp4 output run headless: drop --window")
     if a.window:
         from .display.tkwindow import NoDisplay
         try:
@@ -183,11 +203,35 @@ def main(argv=None):
             return 0
         write_png(Path(a.out), img)
         return 0
-    img = run_program(prog, a.frames, a.args, menu=a.menu)
+    if a.every < 1:
+        ap.error("--every must be >= 1")
+    if a.trace_frame is not None and a.trace_frame < 1:
+        ap.error("--trace-frame must be >= 1")
+    animate = a.out is not None and Path(a.out).suffix.lower() in (".gif", ".mp4")
+    tr = None
+    if a.trace is not None:
+        from .trace import Trace
+        tr = Trace(a.trace_frame or a.frames, keep=False, outdir=a.trace)
+    frames = [] if animate else None
+    img = run_program(prog, max(a.frames, a.trace_frame or 0), a.args, menu=a.menu,
+                      trace=tr, collect=frames, every=a.every)
+    if tr is not None:
+        index = tr.write(title=f"vgx-run --trace: {prog.name} {' '.join(a.args)}")
+        print(f"vgx-run: {prog.name}: {len(tr.steps)} passes of frame {tr.frame} -> {index}")
     if img is None:
         print(f"vgx-run: {prog} opened no window; nothing saved", file=sys.stderr)
         return 1
     out = Path(a.out) if a.out else prog.with_suffix(".png")
+    if animate:
+        from .display.anim import AnimationError, save_animation
+        try:
+            save_animation(out, frames or [img], a.fps, a.every)
+        except AnimationError as e:
+            print(f"vgx-run: {e}", file=sys.stderr)
+            return 2
+        print(f"vgx-run: {prog.name}: {len(frames or [img])} frames -> {out} "
+              f"({time.perf_counter() - t0:.2f} s)")
+        return 0
     write_png(out, img)
     print(f"vgx-run: {prog.name}: {img.shape[1]}x{img.shape[0]} -> {out} "
           f"({time.perf_counter() - t0:.2f} s)")

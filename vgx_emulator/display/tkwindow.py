@@ -70,6 +70,7 @@ class TkDisplay:
         self.last_shown = 0.0
         self.quit = False
         self.cursors = {}                   # defcursor glyph -> Tk cursor spec
+        self.showing = False
 
     # -- the machine's side ---------------------------------------------
     def sync(self):
@@ -101,6 +102,25 @@ class TkDisplay:
                 self.pump()
                 rest = self.last_shown + self.period - time.perf_counter()
         self.last_shown = time.perf_counter()
+
+    def drawn(self, win):
+        """A batch was drawn (the machine's display hook): a single-buffered
+        window shows its drawing as it happens, at most ``fps`` times a
+        second (30 when unpaced), without waiting for a frame point."""
+        if win.st.double or self.showing:
+            return
+        now = time.perf_counter()
+        if now - self.last_shown >= (self.period or 1.0 / 30.0):
+            self.last_shown = now
+            self.showing = True             # show() flushes: no second look from there
+            try:
+                self.sync()
+                v = self.views.get(win.gid)
+                if v is not None:
+                    v.show()
+            finally:
+                self.showing = False
+            self.pump()
 
     def wait(self):
         """qread on an empty queue: show every window, then wait for input."""
