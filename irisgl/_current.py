@@ -44,6 +44,8 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
                 try:
                     if machine.recording is not None and name not in _immediate():
                         return _record(name, call, args)
+                    if machine.call_hook is not None:    # trace.py: names the passes' calls
+                        return machine.call_hook(name, f, args)
                     return f(*args)
                 except GLError as e:
                     if is_lenient():
@@ -61,6 +63,8 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
                         fail(name, f"not allowed inside bgn{_kind(w)}",
                              "only v*, n*, c*, color, cpack, RGBcolor, t*, lmdef, "
                              "lmbind, lmcolor and swaptmesh may appear there")
+                    if machine.call_hook is not None:    # trace.py: names the passes' calls
+                        return machine.call_hook(name, f, args)
                     return f(*args)
                 except GLError as e:
                     if is_lenient():
@@ -130,16 +134,22 @@ def num(call, x, what="argument"):
 
 
 def integer(call, x, what="argument"):
+    """An integer argument.  A finite float is truncated toward zero, as a C
+    compiler converts it for a ``short``/``long`` parameter (a port of
+    ``XMAXSCREEN*3/4`` or ``circfs(x, y, r)`` with ``float r``); NaN and
+    infinity have no integer value and are refused."""
     if isinstance(x, int):
         return int(x)                     # exact, however wide (Decision 13 masks)
     if isinstance(x, np.integer):
         return int(x)
+    if isinstance(x, str):
+        fail(call, f"{what} {x!r} is not an integer", "pass an integer")
     try:
         f = float(x)
     except (TypeError, ValueError):
         fail(call, f"{what} {x!r} is not an integer", "pass an integer")
-    if not math.isfinite(f) or f != int(f):
-        fail(call, f"{what} {x!r} is not an integer", "pass an integer")
+    if not math.isfinite(f):
+        fail(call, f"{what} {x!r} is not an integer", "pass a finite integer")
     return int(f)
 
 

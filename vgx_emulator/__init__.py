@@ -8,9 +8,12 @@ from .machine import VGX
 from .runner import run_program
 from . import menus
 from .menus import script as script_menus
+from .planes import planes
+from .trace import Trace, trace_program
 
 __all__ = ["VGX", "GLError", "VGXWarning", "run_program", "save_png", "machine",
-           "set_error_mode", "error_mode", "window_image", "menus", "script_menus"]
+           "set_error_mode", "error_mode", "window_image", "menus", "script_menus",
+           "planes", "Trace", "trace_program"]
 
 
 def machine():

@@ -17,8 +17,17 @@ import sys
 import time
 from pathlib import Path
 
+from .display.anim import AccumulationFrames, write_gif
 from .display.png import write_png
 from .runner import run_program
+
+#: figures that also get an animation (a GIF next to the PNG), by
+#: (program, figure name); a figure dict may carry the same as "animate".
+#: {"frames": N, "every": K}: every K-th of N frames, at the pace of
+#: vgx-run's --fps default; {"at": "acbuf"}: the accumulation buffer after
+#: each AC_ACCUMULATE of the figure's frame (display/anim.py).
+ANIMATIONS = {("tessman_flat_shadows", "moving"): {"frames": 18, "every": 1},
+              ("heidmann_shadow_volumes", "6"): {"at": "acbuf"}}
 
 PROGRAMS = ["williams_shadow_zbuffer", "tessman_flat_shadows", "bentley_ground_shadows",
             "bentley_shadow_zbuffer", "hart_shadow_buffer", "heidmann_shadow_volumes",
@@ -75,8 +84,15 @@ def render(outdir, folder, only=None):
         _bar(i, len(items), f"{prog.stem}: {fig['name']}", t0)
         t = time.perf_counter()
         err = None
+        anim = fig.get("animate") or ANIMATIONS.get((prog.stem, fig["name"]))
         try:
-            img = run_program(prog, frames=fig.get("frames", 1), argv=fig.get("args", []))
+            img, frames = _run(prog, fig, anim)
+            if frames:
+                gif = ("demos__" if prog.parent.name == "demos" else "") + \
+                    f"{prog.stem}__{fig['name']}.gif"
+                write_gif(outdir / gif, frames, 30.0 if anim.get("at") != "acbuf" else 8.0,
+                          anim.get("every", 1))
+                fig = dict(fig, _gif=gif)
         except Exception as e:          # a broken figure must not stop the gallery
             img, err = None, f"{type(e).__name__}: {e}"
         dt = time.perf_counter() - t
@@ -91,6 +107,21 @@ def render(outdir, folder, only=None):
     sys.stderr.write("\n")
     _index(outdir, rows, time.perf_counter() - t0)
     return rows
+
+
+def _run(prog, fig, anim):
+    """The figure's image, and the frames of its animation (or None)."""
+    args, n = fig.get("args", []), fig.get("frames", 1)
+    if not anim:
+        return run_program(prog, frames=n, argv=args), None
+    if anim.get("at") == "acbuf":
+        acc = AccumulationFrames()
+        img = run_program(prog, frames=n, argv=args, trace=acc)
+        return img, acc.frames
+    frames = []
+    run_program(prog, frames=anim["frames"], argv=args, collect=frames,
+                every=anim.get("every", 1))
+    return run_program(prog, frames=n, argv=args), frames
 
 
 def _index(outdir, rows, total):
@@ -110,6 +141,9 @@ def _index(outdir, rows, total):
         parts.append("<figure>")
         if fname:
             parts.append(f"<img src='{html.escape(fname)}' alt='{html.escape(fig['name'])}'>")
+        if fig.get("_gif"):
+            parts.append(f"<img src='{html.escape(fig['_gif'])}' "
+                         f"alt='{html.escape(fig['name'])} (animation)'>")
         parts.append(f"<figcaption><b>{html.escape(fig['caption'])}</b><br>"
                      f"program <code>programs/{html.escape(rel)}</code> "
                      f"{html.escape(' '.join(fig.get('args', [])))}; {dt:.2f} s")

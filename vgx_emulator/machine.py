@@ -120,6 +120,7 @@ class VGX:
         self.linestyles = {0: 0xFFFF}  # deflinestyle: index -> 16-bit pattern (all windows)
         self.frame_hook = None         # runner: called at each frame end
         self.trace_hook = None         # trace.py: (machine, win, event, *detail) at pass ends
+        self.display_hook = None       # display/tkwindow.py: called after each drawn batch
         self.call_hook = None          # trace.py: (name, f, args) runs each top-level call
         self.last_image = None         # what the last closed window showed
         self.picking = None            # pick/gselect session (vgx_emulator/picking.py)
@@ -467,6 +468,8 @@ class VGX:
             b.prims.append((kind, b.vbase + b.start, n, concave))
         b.open = None
         b.start = len(b.akey)
+        if self.display_hook is not None:
+            self.display_hook(win)          # a real window: drawing shows as it happens
 
     def vertex(self, win, x, y, z, w, call):
         b = win.batch

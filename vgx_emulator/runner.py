@@ -66,7 +66,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
 
     def on_frame(m, win):
         drawn["n"] += 1
-        if collect is not None and drawn["n"] % every == 0:
+        if collect is not None and (drawn["n"] - 1) % every == 0:
             collect.append(m.image(win))
         if drawn["n"] >= frames and (not menus.pending(machine)
                                      or drawn["n"] >= frames + 10 * answers):

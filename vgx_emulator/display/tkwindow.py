@@ -43,6 +43,12 @@ _KEYS = {
 }
 
 
+#: Control+key switches what a window shows (the key is not queued for the
+#: program): the screen, or one bank in false colour (vgx_emulator/planes.py)
+VIEW_KEYS = {"1": "screen", "2": "z", "3": "stencil", "4": "accum", "5": "overlay",
+             "6": "back"}
+
+
 class NoDisplay(RuntimeError):
     """No display to open a real window on."""
 
@@ -70,6 +76,7 @@ class TkDisplay:
         self.last_shown = 0.0
         self.quit = False
         self.cursors = {}                   # defcursor glyph -> Tk cursor spec
+        self.view = "screen"                # what the windows show (VIEW_KEYS)
         self.showing = False
 
     # -- the machine's side ---------------------------------------------
@@ -243,13 +250,14 @@ class _View:
         tk = display.tk
         self.d, self.win = display, win
         self.top = tk.Toplevel(display.root)
-        self.top.title(getattr(win, "title", None) or win.name or "IRIS GL")
+        self.top.title(getattr(win, "wm", {}).get("title") or win.name or "IRIS GL")
         self.placed = None
         self.follow()
         self.label = tk.Label(self.top, bd=0, highlightthickness=0, cursor="crosshair")
         self.label.pack(fill="both", expand=True)
         self.photo = None
         self.shown_cursor = None
+        self.shown_title = None
         t = self.top
         t.protocol("WM_DELETE_WINDOW", self.on_close)
         for b in (1, 2, 3):
@@ -271,7 +279,7 @@ class _View:
             return
         self.follow()
         self.cursor()
-        img = m.image(win)
+        img = self.picture()
         h, w = img.shape[:2]
         header = f"P6 {w} {h} 255 ".encode()
         data = header + img.tobytes()
@@ -280,6 +288,31 @@ class _View:
             self.label.configure(image=self.photo)
         else:
             self.photo.configure(data=data, format="PPM")
+
+    def picture(self):
+        """What the window shows: the screen, or the bank chosen with the
+        view keys as its false-colour picture (the legend in the title)."""
+        from .. import planes as P
+        m, win = self.d.machine, self.win
+        name = self.d.view
+        title = getattr(win, "wm", {}).get("title") or win.name or "IRIS GL"
+        if name != "screen":
+            m._flush(win)
+            banks = P.banks(win)
+            if name in banks:
+                pic = P.picture(name, banks[name], win, P.stencil_key(win), m)
+                legend = "; ".join(t for _, t in pic.legend[:4])
+                self.set_title(f"{title} [{pic.title}: {legend}]")
+                return pic.image
+            self.set_title(f"{title} [no {name} bank]")
+        else:
+            self.set_title(title)
+        return m.image(win)
+
+    def set_title(self, text):
+        if text != self.shown_title:
+            self.shown_title = text
+            self.top.title(text)
 
     def cursor(self):
         """The cursor calls (curson, cursoff, curstype, defcursor, setcursor):
@@ -318,6 +351,12 @@ class _View:
         self.d.input({1: LEFTMOUSE, 2: MIDDLEMOUSE, 3: RIGHTMOUSE}[b], down)
 
     def on_key(self, e, down):
+        if e.state & 0x4 and e.keysym in VIEW_KEYS:          # Control + view key
+            if down:
+                self.d.view = VIEW_KEYS[e.keysym]
+                for v in self.d.views.values():
+                    v.show()
+            return
         dev = _KEYS.get(e.keysym, _KEYS.get(e.keysym.lower()))
         if dev is not None:
             self.d.input(dev, down)
