@@ -286,3 +286,58 @@ def test_single_buffered_drawing_shows_as_it_happens(xserver, tmp_path):
         assert p.proc.poll() is None                   # still drawing, never swapped
     finally:
         p.kill()
+
+
+def test_pause_and_step_through_the_passes_of_a_frame(xserver, tmp_path):
+    """Control+P traces the next frame and pauses on it; Control+B/N step
+    through its passes; Control+3 shows the stencil bank, which after the
+    sclear(5) pass holds 5 everywhere (the legend counts every pixel)."""
+    prog = tmp_path / "passes.py"
+    prog.write_text(
+        "from irisgl import *\n"
+        "prefsize(64, 48); winopen('passes'); RGBmode(); doublebuffer(); stensize(8)\n"
+        "gconfig(); zbuffer(TRUE); ortho2(-0.5, 63.5, -0.5, 47.5)\n"
+        "while True:\n"
+        "    czclear(0xff000000, getgdesc(GD_ZMAX))\n"
+        "    sclear(5)\n"
+        "    cpack(0xff0000ff); rectf(10, 10, 40, 30)\n"
+        "    swapbuffers()\n")
+    p = Program(xserver, prog, name="passes")
+    try:
+        p.settle()
+        p.xdo("windowfocus", "--sync", p.wid)
+        p.xdo("key", "ctrl+2")                        # the z bank of the running program
+        t0 = time.time()
+        while "z bank" not in p.xdo("getwindowname", p.wid) and time.time() - t0 < 10:
+            time.sleep(0.2)
+        assert "z bank" in p.xdo("getwindowname", p.wid)
+        p.xdo("key", "ctrl+1")
+        p.xdo("key", "ctrl+p")
+
+        def title(want, timeout=15):
+            t0 = time.time()
+            while time.time() - t0 < timeout:
+                name = p.xdo("getwindowname", p.wid)
+                if want in name:
+                    return name
+                time.sleep(0.2)
+            return name
+        last = title("pass 4/4")
+        assert "pass 4/4" in last                     # czclear, sclear, rectf, swap
+        p.xdo("key", "ctrl+b")
+        p.xdo("key", "ctrl+b")
+        p.xdo("key", "ctrl+3")
+        name = title("stencil bank")
+        assert "pass 2/4" in name and "5 (= key): 3072 px" in name, name
+        p.xdo("key", "ctrl+n")
+        assert "pass 3/4" in title("pass 3/4")
+        p.xdo("key", "ctrl+1")
+        p.xdo("key", "ctrl+p")                        # resume
+        t0 = time.time()
+        while p.xdo("getwindowname", p.wid).strip() != "passes" and time.time() - t0 < 10:
+            time.sleep(0.2)
+        assert p.xdo("getwindowname", p.wid).strip() == "passes"    # running again
+        time.sleep(1)
+        assert p.proc.poll() is None
+    finally:
+        p.kill()

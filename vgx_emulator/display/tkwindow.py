@@ -47,6 +47,10 @@ _KEYS = {
 #: program): the screen, or one bank in false colour (vgx_emulator/planes.py)
 VIEW_KEYS = {"1": "screen", "2": "z", "3": "stencil", "4": "accum", "5": "overlay",
              "6": "back"}
+#: Control+P pauses after the next frame, which is traced pass by pass
+#: (vgx_emulator/trace.py); Control+N / Control+B step through its passes,
+#: Control+P again resumes the program
+PAUSE, NEXT, BACK = "p", "n", "b"
 
 
 class NoDisplay(RuntimeError):
@@ -77,6 +81,9 @@ class TkDisplay:
         self.quit = False
         self.cursors = {}                   # defcursor glyph -> Tk cursor spec
         self.view = "screen"                # what the windows show (VIEW_KEYS)
+        self.trace = None                   # the Trace of the frame being paused on
+        self.pause_asked = self.paused = self.redraw_step = False
+        self.steps, self.step_i = None, 0
         self.showing = False
 
     # -- the machine's side ---------------------------------------------
@@ -96,7 +103,17 @@ class TkDisplay:
 
     def frame(self, m, win):
         """A frame point (the machine's frame hook): show the window, then
-        keep to the frame rate."""
+        keep to the frame rate.  With a pause asked for, the next frame is
+        traced and the program then waits while its passes are looked at."""
+        if self.trace is not None and not self.trace.recording:
+            self.trace.uninstall()
+            steps, self.trace = self.trace.steps, None
+            if steps:
+                self.inspect(steps)
+        if self.pause_asked:
+            from ..trace import Trace
+            self.pause_asked = False
+            self.trace = Trace(frame=1, keep=True).install(m)
         self.sync()
         v = self.views.get(win.gid)
         if v is not None:
@@ -109,6 +126,41 @@ class TkDisplay:
                 self.pump()
                 rest = self.last_shown + self.period - time.perf_counter()
         self.last_shown = time.perf_counter()
+
+    def inspect(self, steps):
+        """The paused frame: show pass ``i`` (the last one first) in every
+        window of the trace until Control+P resumes the program."""
+        self.steps, self.step_i, self.paused = steps, len(steps) - 1, True
+        try:
+            while self.paused:
+                for v in self.views.values():
+                    v.show()
+                while self.paused and not self.redraw_step:
+                    self.pump()
+                    time.sleep(0.01)
+                self.redraw_step = False
+        finally:
+            self.steps = None
+
+    def command(self, key):
+        """A Control key the display keeps for itself (VIEW_KEYS, PAUSE ...)."""
+        if key in VIEW_KEYS:
+            self.view = VIEW_KEYS[key]
+        elif key == PAUSE:
+            if self.paused:
+                self.paused = False
+            else:
+                self.pause_asked = True
+        elif key in (NEXT, BACK) and self.steps:
+            d = 1 if key == NEXT else -1
+            self.step_i = min(max(self.step_i + d, 0), len(self.steps) - 1)
+        else:
+            return False
+        self.redraw_step = True
+        if not self.paused:
+            for v in self.views.values():
+                v.show()
+        return True
 
     def drawn(self, win):
         """A batch was drawn (the machine's display hook): a single-buffered
@@ -292,15 +344,17 @@ class _View:
     def picture(self):
         """What the window shows: the screen, or the bank chosen with the
         view keys as its false-colour picture (the legend in the title)."""
-        from .. import planes as P
+        from ..planes import banks, picture, stencil_key
         m, win = self.d.machine, self.win
         name = self.d.view
         title = getattr(win, "wm", {}).get("title") or win.name or "IRIS GL"
+        if self.d.steps:
+            return self.step_picture(title, name)
         if name != "screen":
             m._flush(win)
-            banks = P.banks(win)
+            banks = banks(win)
             if name in banks:
-                pic = P.picture(name, banks[name], win, P.stencil_key(win), m)
+                pic = picture(name, banks[name], win, stencil_key(win), m)
                 legend = "; ".join(t for _, t in pic.legend[:4])
                 self.set_title(f"{title} [{pic.title}: {legend}]")
                 return pic.image
@@ -308,6 +362,26 @@ class _View:
         else:
             self.set_title(title)
         return m.image(win)
+
+    def step_picture(self, title, name):
+        """Pass ``step_i`` of the paused frame: the chosen bank as it was
+        after that pass (the screen view shows the bank drawn into)."""
+        from ..planes import banks, picture, stencil_key
+        d, win = self.d, self.win
+        step = d.steps[d.step_i]
+        head = f"{title} [pass {d.step_i + 1}/{len(d.steps)}: {step.label}"
+        if step.gid != win.gid or not step.arrays:
+            self.set_title(head + "]")
+            return d.machine.image(win)
+        if name == "screen":
+            name = "back" if win.st.double and "back" in step.arrays else "front"
+        if name not in step.arrays:
+            self.set_title(head + f"; no {name} bank]")
+            return d.machine.image(win)
+        pic = picture(name, step.arrays[name], win, step.key, d.machine)
+        self.set_title(head + f"; {pic.title}: " +
+                       "; ".join(t for _, t in pic.legend[:3]) + "]")
+        return pic.image
 
     def set_title(self, text):
         if text != self.shown_title:
@@ -351,11 +425,9 @@ class _View:
         self.d.input({1: LEFTMOUSE, 2: MIDDLEMOUSE, 3: RIGHTMOUSE}[b], down)
 
     def on_key(self, e, down):
-        if e.state & 0x4 and e.keysym in VIEW_KEYS:          # Control + view key
+        if e.state & 0x4 and (e.keysym in VIEW_KEYS or e.keysym.lower() in (PAUSE, NEXT, BACK)):
             if down:
-                self.d.view = VIEW_KEYS[e.keysym]
-                for v in self.d.views.values():
-                    v.show()
+                self.d.command(e.keysym.lower())    # the display's own keys, not queued
             return
         dev = _KEYS.get(e.keysym, _KEYS.get(e.keysym.lower()))
         if dev is not None:
