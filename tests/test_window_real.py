@@ -341,3 +341,42 @@ def test_pause_and_step_through_the_passes_of_a_frame(xserver, tmp_path):
         assert p.proc.poll() is None
     finally:
         p.kill()
+
+
+def test_two_windows_keys_and_focus(xserver, tmp_path):
+    """Each IRIS GL window is a real window at its prefposition; KEYBD gives
+    ASCII, INPUTCHANGE names the window that gets the input focus."""
+    prog = tmp_path / "two.py"
+    prog.write_text(
+        "from irisgl import *\n"
+        "prefposition(100, 199, 200, 279); a = winopen('first'); RGBmode(); gconfig()\n"
+        "cpack(0xff0000ff); clear()\n"
+        "prefposition(400, 463, 500, 547); b = winopen('second'); RGBmode(); gconfig()\n"
+        "cpack(0xffff0000); clear()\n"
+        "qdevice(KEYBD); qdevice(INPUTCHANGE)\n"
+        "qreset()\n"
+        "while True:\n"
+        "    dev, val = qread()\n"
+        "    print(dev, val, flush=True)\n"
+        "    if dev == KEYBD and val == ord('q'):\n"
+        "        break\n")
+    p = Program(xserver, prog, name="second")
+    try:
+        first = p.xdo("search", "--sync", "--onlyvisible", "--name", "first").split()[0]
+        x, y, w, h = p.geometry()
+        assert (x, SCREEN_H - (y + h), w, h) == (400, 500, 64, 48)
+        assert (p.settle() == (0, 0, 255)).all()
+        p.wid = first
+        x, y, w, h = p.geometry()
+        assert (x, SCREEN_H - (y + h), w, h) == (100, 200, 100, 80)
+        assert (p.settle() == (255, 0, 0)).all()
+        p.xdo("windowfocus", "--sync", first)
+        time.sleep(0.5)
+        p.xdo("type", "aq")
+        assert p.wait() == 0
+        lines = p.proc.stdout.read().split("\n")
+        assert "534 1" in lines                          # INPUTCHANGE: window 1
+        keys = [ln for ln in lines if ln.startswith("513 ")]
+        assert keys == ["513 97", "513 113"]
+    finally:
+        p.kill()
