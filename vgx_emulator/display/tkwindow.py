@@ -286,13 +286,7 @@ class TkDisplay:
     # -- input ----------------------------------------------------------
     def input(self, dev, val):
         """A device changed: its state always, the queue when it is queued."""
-        ev = self.machine.events
-        if dev in ev.queued:
-            ev.enter(dev, val)
-        elif dev in (MOUSEX, MOUSEY) or 256 <= dev < 512:
-            ev.valuators[dev] = val
-        else:
-            ev.buttons[dev] = 1 if val else 0
+        self.machine.events.device_input(dev, val)
 
 
 class _View:
