@@ -1,6 +1,7 @@
 """The one module-level state of irisgl: the machine the calls drive, and the
 wrapper every call goes through (strict/lenient errors, bgn/end rule)."""
 import functools
+import inspect
 import math
 
 import numpy as np
@@ -52,6 +53,14 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
                         report(e)
                         return None
                     raise
+                except TypeError:
+                    e = _arity_error(name, f, args)
+                    if e is None:
+                        raise
+                    if is_lenient():
+                        report(e)
+                        return None
+                    raise e from None
         else:
             @functools.wraps(f)
             def call(*args):
@@ -71,6 +80,14 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
                         report(e)
                         return None
                     raise
+                except TypeError:
+                    e = _arity_error(name, f, args)
+                    if e is None:
+                        raise
+                    if is_lenient():
+                        report(e)
+                        return None
+                    raise e from None
         call.__wrapped__ = f
         return call
     return wrap(fn) if fn is not None else wrap
@@ -78,6 +95,28 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
 
 def _immediate():
     return IMMEDIATE
+
+
+def _arity_error(name, f, args):
+    """The GLError for a call given too few or too many arguments (a K&R
+    program's ``qenter(REDRAW)``), or None when ``args`` fit ``f`` and the
+    TypeError came from inside it."""
+    try:
+        sig = inspect.signature(f)
+        sig.bind(*args)
+        return None
+    except ValueError:
+        return None
+    except TypeError:
+        pass
+    params = [p.name for p in sig.parameters.values()
+              if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD, p.VAR_POSITIONAL)]
+    n = len(args)
+    try:
+        fail(name, f"{n} argument{'s' if n != 1 else ''} given",
+             f"the call is {name}({', '.join(params)})")
+    except GLError as e:
+        return e
 
 
 def not_emulated(name, why):

@@ -32,9 +32,12 @@ def _matrix(call, m, shape=(4, 4), what="matrix"):
         a = np.array(m, dtype=np.float64)
     except (TypeError, ValueError):
         fail(call, f"{what} is not numeric", f"a {shape} array of numbers")
-    if a.size != int(np.prod(shape)):
+    need = int(np.prod(shape))
+    if a.size < need:
         fail(call, f"{what} has {a.size} elements", f"it takes {shape[0]}x{shape[1]}")
-    return a.reshape(shape)
+    # a longer C array (crv(&geom[i-2][0]) into a bigger table) is read from
+    # its first elements, as C reads them
+    return a.reshape(-1)[:need].reshape(shape)
 
 
 @glcall

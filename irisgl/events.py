@@ -116,7 +116,11 @@ def qtest():
 @glcall(immediate=True)
 def qenter(dev, val):
     """qenter(3G): append an entry, as the window system would (a tied
-    button brings its valuators, tie(3G)).  Devices 1-0x7FFF."""
+    button brings its valuators, tie(3G)).  Devices 1-0x7FFF.  A C character
+    constant ported as a one-character string (``qenter(KEYBD, 't')``) is its
+    character code, as in C; qread gives that code back."""
+    if isinstance(val, str) and len(val) == 1:
+        val = ord(val)
     v = integer("qenter", val, "value")
     if not -32768 <= v <= 65535:
         fail("qenter", f"value {v}", "a short")

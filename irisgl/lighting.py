@@ -29,8 +29,8 @@ def lmdef(deftype, index, np, props):
 
     ``props``: tokens each followed by their floats, ending with LMNULL;
     ``np`` counts the floats including LMNULL (0: read to LMNULL).  Only the
-    listed properties change; ``None`` or an empty list (LMNULL first)
-    restores the defaults.  Index 0 is the null definition and cannot be
+    listed properties change; ``None`` (or 0, C's NULL) or an empty list
+    (LMNULL first) restores the defaults.  Index 0 is the null definition and cannot be
     redefined.
     """
     d = token("lmdef", deftype, _DEFTYPES, "definition type")
@@ -39,6 +39,8 @@ def lmdef(deftype, index, np, props):
     if i <= 0 or i > 65535:
         fail("lmdef", f"index {i}", "1..65535 (0 is the null definition)")
     parsed = None
+    if isinstance(props, int) and props == 0:
+        props = None                      # C's NULL written as 0: lmdef(DEFLIGHT, 1, 0, 0)
     if props is not None:
         try:
             seq = list(props)

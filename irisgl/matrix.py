@@ -80,16 +80,25 @@ def multmatrix(m):
 @glcall
 def getmatrix(m=None):
     """getmatrix(3G): the current matrix of the mode (MPROJECTION: Projection).
-    Given a writable 4x4 array, fills it; else returns a new Matrix."""
+    Given a writable 4x4 array (numpy, or lists as a port of C ``float m[4][4]``),
+    fills it in place; else returns a new Matrix."""
     from .types import Matrix
     cur = win("getmatrix").st.matrices.current()
     if m is None:
         return Matrix(cur)
-    if not isinstance(m, np.ndarray) or m.size != 16:
-        fail("getmatrix", "the array to fill is not a 16-element numpy array",
-             "pass a 4x4 array or nothing")
-    m.reshape(4, 4)[...] = cur
-    return None
+    if isinstance(m, np.ndarray) and m.size == 16 and m.flags.writeable:
+        m[...] = cur.reshape(m.shape)
+        return None
+    if isinstance(m, list):               # C ``float m[4][4]`` ported as lists
+        if len(m) == 4 and all(isinstance(r, list) and len(r) >= 4 for r in m):
+            for i in range(4):
+                m[i][:4] = [float(x) for x in cur[i]]
+            return None
+        if len(m) >= 16 and not any(isinstance(x, (list, tuple, np.ndarray)) for x in m):
+            m[:16] = [float(x) for x in cur.ravel()]
+            return None
+    fail("getmatrix", "the array to fill is not a writable 4x4 array",
+         "pass a 4x4 numpy array, 4 lists of 4 numbers, a list of 16, or nothing")
 
 
 @glcall

@@ -36,12 +36,13 @@ IMMEDIATE.update({
 
 
 class _Object:
-    __slots__ = ("items", "ops", "cursor")
+    __slots__ = ("items", "ops", "cursor", "replacing")
 
     def __init__(self):
         self.items = []
         self.ops = []
         self.cursor = 0
+        self.replacing = False            # objreplace: new routines overwrite, one for one
 
 
 def record(name, fn, args):
@@ -51,7 +52,15 @@ def record(name, fn, args):
     (makeobj(3G) compiles values, not references)."""
     rec = machine.recording
     obj = machine.objects[rec]
-    obj.items.insert(obj.cursor, ("call", name, fn, tuple(_value(a) for a in args)))
+    item = ("call", name, fn, tuple(_value(a) for a in args))
+    if obj.replacing:                     # objreplace(3G): overwrite the next routine
+        while obj.cursor < len(obj.items) and obj.items[obj.cursor][0] == "tag":
+            obj.cursor += 1               # tags mark places; they are not overwritten
+        if obj.cursor < len(obj.items):
+            obj.items[obj.cursor] = item
+            obj.cursor += 1
+            return
+    obj.items.insert(obj.cursor, item)
     obj.cursor += 1
 
 
@@ -97,6 +106,7 @@ def editobj(obj):
         fail("editobj", f"object {o} is not defined", "makeobj it first")
     ob = machine.objects[o]
     ob.cursor = len(ob.items)
+    ob.replacing = False
     machine.recording = o
 
 
@@ -107,6 +117,7 @@ def closeobj():
         fail("closeobj", "no object is open", "makeobj or editobj first")
     ob = machine.objects[machine.recording]
     ob.ops = O.compile_items(ob.items)
+    ob.replacing = False
     machine.recording = None
 
 
@@ -255,18 +266,17 @@ def objinsert(t):
     """objinsert(3G): the edit point moves just after tag t."""
     ob, i = _tag_index("objinsert", t)
     ob.cursor = i + 1
+    ob.replacing = False
 
 
 @glcall
 def objreplace(t):
-    """objreplace(3G): delete what follows tag t up to the next tag; new calls
-    go there."""
+    """objreplace(3G): the routines that follow overwrite, one for one, those
+    after tag t, until closeobj, objinsert, objdelete or objreplace; tags on
+    the way stay, and past the object's end the new routines are added."""
     ob, i = _tag_index("objreplace", t)
-    j = i + 1
-    while j < len(ob.items) and ob.items[j][0] != "tag":
-        j += 1
-    del ob.items[i + 1:j]
     ob.cursor = i + 1
+    ob.replacing = True
 
 
 @glcall
@@ -278,6 +288,7 @@ def objdelete(t1, t2):
         i, j = j, i
     del ob.items[i + 1:j]
     ob.cursor = min(ob.cursor, len(ob.items))
+    ob.replacing = False
 
 
 @glcall

@@ -27,6 +27,26 @@ def _order(w, block):
     return block
 
 
+def _out(call, parray, n):
+    """Check a C out-array: a writable numpy array or a list of at least n
+    elements (a longer C buffer is filled in its first n, as C does)."""
+    if parray is None:
+        return
+    size = parray.size if isinstance(parray, np.ndarray) else (
+        len(parray) if isinstance(parray, list) else -1)
+    if size < n:
+        fail(call, "parray is not a numpy array or list of at least "
+             "(x2-x1+1)*(y2-y1+1) elements", f"pass {n} elements or nothing")
+
+
+def _fill(parray, words):
+    """Store the flat pixel words in the first elements of parray."""
+    if isinstance(parray, np.ndarray):
+        parray.reshape(-1)[:words.size] = words.astype(parray.dtype, copy=False)
+    else:
+        parray[:words.size] = words.tolist()
+
+
 @glcall
 def readsource(src):
     """readsource(3G): the bank lrectread reads (SRC_AUTO: front in single-,
@@ -45,20 +65,22 @@ def lrectread(x1, y1, x2, y2, parray=None):
 
     Python: without ``parray`` returns an (h, w) uint32 array, row 0 at y1
     (from SRC_ZBUFFER: int32 signed z values, Decision 3); with a writable
-    numpy array of h*w elements, fills it and returns the count.
+    numpy array or a list of at least h*w elements, fills its first h*w
+    (as C fills a larger buffer) and returns the count.
     """
     w = win("lrectread")
     x1, y1, x2, y2 = (integer("lrectread", v) for v in (x1, y1, x2, y2))
     if x2 < x1 or y2 < y1:
         fail("lrectread", f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
     n = (x2 - x1 + 1) * (y2 - y1 + 1)
-    if parray is not None and (not isinstance(parray, np.ndarray) or parray.size != n):
-        fail("lrectread", "parray is not a numpy array of (x2-x1+1)*(y2-y1+1) elements",
-             f"pass {n} elements or nothing")
+    _out("lrectread", parray, n)
     block = _order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource))
     if parray is None:
         return block if w.readsource == K.SRC_ZBUFFER else block.astype(np.uint32)
-    parray.reshape(-1)[...] = block.reshape(-1).view(np.uint32).astype(parray.dtype, copy=False)
+    flat = block.reshape(-1)
+    if isinstance(parray, np.ndarray) or w.readsource != K.SRC_ZBUFFER:
+        flat = flat.view(np.uint32)          # a list gets signed z words, as returned
+    _fill(parray, flat)
     return n
 
 
@@ -70,14 +92,12 @@ def rectread(x1, y1, x2, y2, parray=None):
     if x2 < x1 or y2 < y1:
         fail("rectread", f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
     n = (x2 - x1 + 1) * (y2 - y1 + 1)
-    if parray is not None and (not isinstance(parray, np.ndarray) or parray.size != n):
-        fail("rectread", "parray is not a numpy array of (x2-x1+1)*(y2-y1+1) elements",
-             f"pass {n} elements or nothing")
+    _out("rectread", parray, n)
     block = (_order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource)).astype(np.int64)
              & 0xFFFF).astype(np.uint16)
     if parray is None:
         return block
-    parray.reshape(-1)[...] = block.reshape(-1)
+    _fill(parray, block.reshape(-1))
     return n
 
 
@@ -92,8 +112,10 @@ def _write(call, x1, y1, x2, y2, parray, dtype):
         words = (a.astype(np.int64) & (0xFFFFFFFF if dtype == np.uint32 else 0xFFFF))
     except (TypeError, ValueError):
         fail(call, "parray is not an array of integers", f"{h * wd} pixel words")
-    if words.size != h * wd:
+    if words.size < h * wd:
         fail(call, f"parray has {words.size} elements", f"(x2-x1+1)*(y2-y1+1) = {h * wd}")
+    # a longer C array is read from its first elements
+    words = words.reshape(-1)[:h * wd]
     machine.write_pixels(w, x1, y1, _order(w, words.reshape(h, wd)).astype(np.uint32),
                          w.st.zoom)
 

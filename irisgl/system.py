@@ -188,10 +188,29 @@ def getothermonitor():
 
 
 @glcall(immediate=True)
-def gversion():
+def gversion(v=None):
     """gversion(3G): ``ret, v = gversion()``: 0 (the return value has no use,
-    gversion(3G)) and the hardware and library string, GL4DVGX-m.n."""
-    return 0, VERSION
+    gversion(3G)) and the hardware and library string, GL4DVGX-m.n.  As C's
+    ``gversion(buf)``, a writable byte buffer (bytearray, uint8 array) is
+    filled in place with the NUL-terminated string, and 0 is returned."""
+    if v is None:
+        return 0, VERSION
+    if isinstance(v, str):
+        fail("gversion", "a Python str cannot be filled in",
+             "write ret, v = gversion(), or pass a bytearray(12)")
+    data = VERSION.encode("ascii") + b"\0"
+    try:
+        if len(v) < len(data):
+            fail("gversion", f"buffer of {len(v)} bytes",
+                 f"at least {len(data)} (the string and its NUL)")
+        if isinstance(v, np.ndarray):
+            v.reshape(-1)[:len(data)] = np.frombuffer(data, np.uint8)
+        else:
+            v[:len(data)] = data
+    except TypeError:
+        fail("gversion", f"{type(v).__name__} is not a writable byte buffer",
+             "pass a bytearray(12) or nothing")
+    return 0
 
 
 _GLC = {K.GLC_OLDPOLYGON: "GLC_OLDPOLYGON", K.GLC_ZRANGEMAP: "GLC_ZRANGEMAP",

@@ -349,13 +349,15 @@ def _pos(call, x, y, what):
 @glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
 def minsize(x, y):
     """minsize(3G): smallest size the user may give the window (next winopen,
-    or the current window at winconstraints); kept."""
+    or the current window at winconstraints); kept, and a winopen without
+    prefsize gets at least this size (docs/windows-and-devices.md)."""
     machine.pref["minsize"] = _pos("minsize", x, y, "size")
 
 
 @glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
 def maxsize(x, y):
-    """maxsize(3G): largest size the user may give the window; kept."""
+    """maxsize(3G): largest size the user may give the window; kept, and a
+    winopen without prefsize gets at most this size."""
     machine.pref["maxsize"] = _pos("maxsize", x, y, "size")
 
 

@@ -429,7 +429,7 @@ def test_bad_arguments_raise():
     with pytest.raises(GLError, match=r"^crvn"):
         crvn(6, pts)
     with pytest.raises(GLError, match=r"^crv"):
-        crv(pts)                                    # five points
+        crv(pts[:3])                                # three points (five: the first four)
     assert _lit() == set()
 
 

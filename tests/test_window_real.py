@@ -380,3 +380,27 @@ def test_two_windows_keys_and_focus(xserver, tmp_path):
         assert keys == ["513 97", "513 113"]
     finally:
         p.kill()
+
+
+def test_a_polling_program_sees_its_input(xserver, tmp_path):
+    """A program that never waits nor swaps, only polls qtest(3G): its window
+    still shows and its keys still arrive."""
+    prog = tmp_path / "poller.py"
+    prog.write_text(
+        "from irisgl import *\n"
+        "prefsize(64, 48); winopen('poller'); RGBmode(); gconfig()\n"
+        "qdevice(ESCKEY)\n"
+        "cpack(0xff0000ff); clear()\n"
+        "while True:\n"
+        "    if qtest():\n"
+        "        dev, val = qread()\n"
+        "        if dev == ESCKEY and val == 0:\n"
+        "            break\n")
+    p = Program(xserver, prog, name="poller")
+    try:
+        assert (p.settle() == (255, 0, 0)).all()
+        p.xdo("windowfocus", "--sync", p.wid)
+        p.xdo("key", "Escape")
+        assert p.wait() == 0
+    finally:
+        p.kill()

@@ -69,6 +69,7 @@ class EventQueue:
         self.noise = {}                # noise(3G): valuator -> delta
         self.last_queued = {}          # valuator -> value of its last queued entry
         self.wait_hook = None          # called when qread would block
+        self.poll_hook = None          # called when qtest finds the queue empty
         self._close_fd()
 
     # -- qdevice ------------------------------------------------------------
@@ -99,6 +100,16 @@ class EventQueue:
                 if v:
                     group.append((v, self.valuator(v)))
         self._append(group)
+
+    def device_input(self, dev, val):
+        """A device changed in a real window (display/tkwindow.py,
+        notebook.py): its state always, an entry when it is queued."""
+        if dev in self.queued:
+            self.enter(dev, val)
+        elif is_valuator(dev):
+            self.valuators[dev] = val
+        elif is_button(dev):
+            self.buttons[dev] = 1 if val else 0
 
     def _append(self, group):
         """Queue a group of entries whole, or (no room) drop it and queue QFULL."""
@@ -145,6 +156,8 @@ class EventQueue:
         return out
 
     def test(self):
+        if not self.entries and self.poll_hook is not None:
+            self.poll_hook()           # the runner ends a loop that only polls
         return self.entries[0][0] if self.entries else 0
 
     def reset(self):

@@ -14,6 +14,7 @@ dopup(3G) takes its answer from a script (:func:`script`, ``vgx-run
 path through submenus written ``2.1`` (item 2, then item 1 of its submenu).
 With no answer left, dopup returns -1.
 """
+import inspect
 import re
 from collections import deque
 
@@ -195,17 +196,34 @@ class MenuTable:
                      f"the rest of the answer {'.'.join(map(str, path))} is ignored")
             v = item.value
             if item.fn is not None:
-                v = _result(item.fn(v), v)
+                v = _result(_handler(item.fn, v), v)
                 if item.bypass:
                     return v
             elif item.bypass:
                 return v
         if m.fn is not None:
-            v = _result(m.fn(v), v)
+            v = _result(_handler(m.fn, v), v)
         return v
 
     def next_answer(self):
         return self.answers.popleft() if self.answers else None
+
+
+def _handler(fn, v):
+    """Call a %f/%F/%n handler with the value, or with nothing when it takes no
+    argument: a K&R C handler declared ``f()`` ignores the value it is passed,
+    and a line-by-line port writes it ``def f():``."""
+    try:
+        inspect.signature(fn).bind(v)
+    except TypeError:
+        try:
+            inspect.signature(fn).bind()
+        except TypeError:
+            return fn(v)                   # let the call itself report the mismatch
+        return fn()
+    except ValueError:                     # no signature to inspect (some builtins)
+        pass
+    return fn(v)
 
 
 def _result(r, given):

@@ -5,9 +5,11 @@ The program runs as ``__main__``.  Every frame point (swapbuffers, gflush,
 finish) is counted; after ``--frames`` of them the program is stopped.  A
 ``qread`` on an empty queue first gets a REDRAW for the current window if
 the program asked for REDRAW events and drew at least one frame but fewer
-than asked (one per frame, so a program that never draws cannot loop); otherwise it
-ends the program cleanly.  What the screen shows of the current window (or
-of the last window closed) is then saved as a PNG.  ``--menu 3,2.1`` answers
+than asked (one per frame, so a program that never draws cannot loop);
+otherwise it ends the program cleanly.  A loop that only polls ``qtest``
+(POLLS empty polls with no frame point between them) is treated the same
+way.  What the screen shows of the current window (or of the last window
+closed) is then saved as a PNG.  ``--menu 3,2.1`` answers
 the program's dopup calls (docs/text-and-menus.md).  ``--out x.gif``
 (or ``.mp4``) saves every (``--every K``: every K-th) frame as an animation;
 ``--trace DIR`` pictures every bank after every pass of one frame
@@ -21,6 +23,11 @@ from pathlib import Path
 
 from .display.png import write_png
 from .events import REDRAW, QueueExhausted
+
+
+#: empty qtest polls without a frame point after which a polling loop is
+#: taken to be waiting for input (it gets what a waiting qread gets)
+POLLS = 2000
 
 
 class FramesDone(BaseException):
@@ -66,6 +73,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
 
     def on_frame(m, win):
         drawn["n"] += 1
+        drawn["polls"] = 0
         if collect is not None and (drawn["n"] - 1) % every == 0:
             collect.append(m.image(win))
         if drawn["n"] >= frames and (not menus.pending(machine)
@@ -85,8 +93,18 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
             drawn["posted_at"] = drawn["n"]
             machine.events.enter(REDRAW, w.gid)
 
+    def on_poll():
+        """qtest on an empty queue: a loop that polls with no frame point in
+        between (curve1.c: ``while (TRUE) if (qtest()) ...``) is waiting for
+        input; after POLLS such polls it is treated as a qread that waits."""
+        drawn["polls"] = drawn.get("polls", 0) + 1
+        if drawn["polls"] >= POLLS:
+            drawn["polls"] = 0
+            machine.events._wait()
+
     machine.frame_hook = on_frame
     machine.events.wait_hook = on_wait
+    machine.events.poll_hook = on_poll
     if trace is not None:
         trace.install(machine)
     old_argv = sys.argv
@@ -102,6 +120,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         sys.argv = old_argv
         machine.frame_hook = None
         machine.events.wait_hook = None
+        machine.events.poll_hook = None
         if trace is not None:
             trace.uninstall()
     if machine.current is not None:
@@ -130,6 +149,7 @@ def run_window(path, argv=None, fps=30.0, frames=None):
     machine.events.wait_hook = display.wait
     machine.menus.chooser = display.popup
     machine.display_hook = display.drawn
+    machine.events.poll_hook = display.poll
     old_argv = sys.argv
     sys.argv = [str(path)] + list(argv or [])
     try:
@@ -145,6 +165,7 @@ def run_window(path, argv=None, fps=30.0, frames=None):
         machine.events.wait_hook = None
         machine.menus.chooser = None
         machine.display_hook = None
+        machine.events.poll_hook = None
         display.close_all()
     if machine.current is not None:
         return machine.image(machine.current)

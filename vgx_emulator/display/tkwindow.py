@@ -85,6 +85,7 @@ class TkDisplay:
         self.pause_asked = self.paused = self.redraw_step = False
         self.steps, self.step_i = None, 0
         self.showing = False
+        self.last_pump = 0.0
 
     # -- the machine's side ---------------------------------------------
     def sync(self):
@@ -179,6 +180,19 @@ class TkDisplay:
                     v.show()
             finally:
                 self.showing = False
+            self.pump()
+
+    def poll(self):
+        """qtest found the queue empty (the queue's poll hook): a program
+        that polls instead of waiting still sees its input and its windows."""
+        now = time.perf_counter()
+        if now - self.last_pump >= 0.005:
+            self.last_pump = now
+            if now - self.last_shown >= (self.period or 1.0 / 30.0):
+                self.last_shown = now
+                self.sync()
+                for v in self.views.values():
+                    v.show()
             self.pump()
 
     def wait(self):

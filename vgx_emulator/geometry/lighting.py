@@ -64,9 +64,11 @@ def parse_properties(call, deftype, np_count, props):
     table = PROPERTIES[deftype]
     vals = [float(v) for v in props]
     if np_count:
-        if np_count < 1 or np_count > len(vals):
+        if np_count < 1:
             fail(call, f"np = {np_count} but the property list has {len(vals)} floats",
                  "np counts the floats including LMNULL, or is 0")
+        # an np past the end of the list (C's lmdef(..., sizeof(array), array)
+        # counts bytes) still stops at LMNULL, as the C library's reading does
         vals = vals[:np_count]
     out = {}
     i = 0
