@@ -404,3 +404,26 @@ def test_a_polling_program_sees_its_input(xserver, tmp_path):
         assert p.wait() == 0
     finally:
         p.kill()
+
+
+def test_frames_are_paced_to_30_a_second_by_default(xserver, tmp_path):
+    """--fps defaults to 30: a program swapping as fast as it can shows at
+    most 30 frames a second (a bound, so the test allows for a slow start)."""
+    prog = tmp_path / "fast.py"
+    prog.write_text(
+        "import time\n"
+        "from irisgl import *\n"
+        "prefsize(32, 32); winopen('fast'); RGBmode(); doublebuffer(); gconfig()\n"
+        "n, t0 = 0, None\n"
+        "while True:\n"
+        "    clear(); swapbuffers(); n += 1\n"
+        "    if n == 5:\n"
+        "        t0 = time.perf_counter()\n"
+        "    if n == 65:\n"
+        "        print('rate', 60 / (time.perf_counter() - t0), flush=True)\n"
+        "        break\n")
+    env = dict(os.environ, DISPLAY=xserver)
+    r = subprocess.run([*VGX_RUN, "--window", str(prog)], env=env, cwd=ROOT,
+                       capture_output=True, text=True, timeout=120)
+    rate = float(r.stdout.split("rate")[1])
+    assert 20 < rate <= 30.5
