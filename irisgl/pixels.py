@@ -4,7 +4,7 @@ import numpy as np
 from vgx_emulator.errors import fail
 
 from . import constants as K
-from ._current import glcall, integer, machine, token, win
+from ._current import glcall, integer, machine, num, token, win
 
 __all__ = ["readsource", "lrectread", "rectread", "lrectwrite", "rectwrite", "rectcopy",
            "rectzoom"]
@@ -58,6 +58,30 @@ def readsource(src):
     w.readsource = s
 
 
+#: the most pixels one read or copy moves: 16 screens of the VGX (a larger
+#: block is a mistake, not a picture; it would only exhaust memory)
+MAX_PIXELS = 16 * 1280 * 1024
+
+
+def _screencoord(call, v):
+    """A Screencoord argument: a C short."""
+    v = integer(call, v, "coordinate")
+    if not -32768 <= v <= 32767:
+        fail(call, f"coordinate {v}", "a Screencoord is a short: -32768..32767")
+    return v
+
+
+def _rect(call, x1, y1, x2, y2):
+    """The inclusive rectangle of a pixel read or copy, checked first."""
+    x1, y1, x2, y2 = (_screencoord(call, v) for v in (x1, y1, x2, y2))
+    if x2 < x1 or y2 < y1:
+        fail(call, f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    if (x2 - x1 + 1) * (y2 - y1 + 1) > MAX_PIXELS:
+        fail(call, f"({x1}, {y1})-({x2}, {y2}) is {(x2 - x1 + 1) * (y2 - y1 + 1)} pixels",
+             f"at most {MAX_PIXELS} (16 screens) in one call")
+    return x1, y1, x2, y2
+
+
 @glcall
 def lrectread(x1, y1, x2, y2, parray=None):
     """lrectread(3G): pixels x1..x2, y1..y2 (window coordinates, inclusive),
@@ -69,9 +93,7 @@ def lrectread(x1, y1, x2, y2, parray=None):
     (as C fills a larger buffer) and returns the count.
     """
     w = win("lrectread")
-    x1, y1, x2, y2 = (integer("lrectread", v) for v in (x1, y1, x2, y2))
-    if x2 < x1 or y2 < y1:
-        fail("lrectread", f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    x1, y1, x2, y2 = _rect("lrectread", x1, y1, x2, y2)
     n = (x2 - x1 + 1) * (y2 - y1 + 1)
     _out("lrectread", parray, n)
     block = _order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource))
@@ -88,9 +110,7 @@ def lrectread(x1, y1, x2, y2, parray=None):
 def rectread(x1, y1, x2, y2, parray=None):
     """rectread(3G): as lrectread with 16-bit Colorindex words (uint16)."""
     w = win("rectread")
-    x1, y1, x2, y2 = (integer("rectread", v) for v in (x1, y1, x2, y2))
-    if x2 < x1 or y2 < y1:
-        fail("rectread", f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    x1, y1, x2, y2 = _rect("rectread", x1, y1, x2, y2)
     n = (x2 - x1 + 1) * (y2 - y1 + 1)
     _out("rectread", parray, n)
     block = (_order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource)).astype(np.int64)
@@ -140,9 +160,8 @@ def rectcopy(x1, y1, x2, y2, newx, newy):
     """rectcopy(3G): copy from readsource to the enabled buffers with its
     lower-left at (newx, newy), zoomed by rectzoom."""
     w = win("rectcopy")
-    x1, y1, x2, y2, nx, ny = (integer("rectcopy", v) for v in (x1, y1, x2, y2, newx, newy))
-    if x2 < x1 or y2 < y1:
-        fail("rectcopy", f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    x1, y1, x2, y2 = _rect("rectcopy", x1, y1, x2, y2)
+    nx, ny = (_screencoord("rectcopy", v) for v in (newx, newy))
     block = machine.lrectread(w, x1, y1, x2, y2, w.readsource).view(np.uint32)
     machine.write_pixels(w, nx, ny, block.copy(), w.st.zoom)
 
@@ -152,8 +171,8 @@ def rectzoom(xfactor, yfactor):
     """rectzoom(3G): pixel replication (> 1) or decimation (< 1) factors for
     lrectwrite, rectwrite and rectcopy; default 1.0."""
     w = win("rectzoom")
-    xf = float(xfactor)
-    yf = float(yfactor)
+    xf = num("rectzoom", xfactor, "xfactor")
+    yf = num("rectzoom", yfactor, "yfactor")
     if not (xf > 0 and yf > 0 and xf < 1e4 and yf < 1e4):
         fail("rectzoom", f"factors ({xfactor}, {yfactor})", "positive and finite")
     w.st.zoom = (xf, yf)

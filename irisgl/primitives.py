@@ -205,8 +205,12 @@ def _poly_calls(fill_, dim, suffix):
     def p(n, parray):
         w = win(name)
         n = integer(name, n, "n")
-        if n < 0 or n > len(parray):
-            fail(name, f"n = {n} but the array has {len(parray)} points", "0 <= n <= len")
+        try:
+            have = len(parray)
+        except TypeError:
+            fail(name, f"the point array {parray!r} is not a sequence", "pass n points")
+        if n < 0 or n > have:
+            fail(name, f"n = {n} but the array has {have} points", "0 <= n <= len")
         pts = _pts(name, list(parray)[:n], dim)
         if fill_ and n > 256:
             fail(name, f"{n} vertices", "at most 256 (GD_NVERTEX_POLY)")

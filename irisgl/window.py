@@ -287,8 +287,8 @@ def getgdesc(inquiry):
     """getgdesc(3G): the VGX's value, or -1 for an unknown inquiry."""
     try:
         return GDESC.get(int(inquiry), -1)
-    except (TypeError, ValueError):
-        return -1
+    except (TypeError, ValueError, OverflowError):
+        return -1                   # getgdesc(3G): -1 for an invalid inquiry
 
 
 @glcall

@@ -97,3 +97,36 @@ def test_setdepth_and_getdepth_errors_name_themselves(open_window):
         setdepth("near", 0)
     setdepth(-100, 100)
     assert getdepth() == (-100, 100)
+
+
+def test_nan_colour_then_clear_warns_and_clears_nothing(open_window):
+    import warnings
+    open_window(8, 8)
+    cpack(0xFF123456)
+    clear()
+    c3f([float("nan"), 0, 0])
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        clear()
+    assert any(str(x.message).startswith("clear:") for x in w)
+    assert (lrectread(0, 0, 7, 7) == 0xFF123456).all()
+
+
+@pytest.mark.parametrize("call, args, name", [
+    (lambda: polf(3, None), (), "polf"),
+    (lambda: rectzoom("abc", 1), (), "rectzoom"),
+    (lambda: lrectread(0, 0, 2 ** 70, 3), (), "lrectread"),
+    (lambda: lrectread(0, 0, 10 ** 4, 10 ** 4), (), "lrectread"),
+    (lambda: rectcopy(0, 0, 3, 3, 2 ** 70, 0), (), "rectcopy"),
+])
+def test_bad_arguments_are_glerrors_naming_the_call(open_window, call, args, name):
+    open_window(8, 8)
+    zoom = machine.current.st.zoom
+    with pytest.raises(GLError, match=f"^{name}: "):
+        call()
+    assert machine.current.st.zoom == zoom
+
+
+def test_getgdesc_of_a_non_integer_inquiry_is_minus_one():
+    assert getgdesc(float("inf")) == -1
+    assert getgdesc("x") == -1

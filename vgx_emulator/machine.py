@@ -14,7 +14,7 @@ Reads (lrectread, PNG output) flush too.
 import numpy as np
 
 from . import config, display, geometry, scan
-from .errors import fail
+from .errors import fail, warn
 from .events import INPUTCHANGE, REDRAW, EventQueue
 from .framebuffer import ZMAX, ZMIN, Framebuffer
 from .framebuffer import layers
@@ -649,6 +649,10 @@ class VGX:
         if r is None:
             return
         st = win.st
+        if not all(-1e300 < c < 1e300 for c in st.colour):
+            warn("clear", "the current colour is not finite (NaN or infinity); "
+                 "nothing is cleared")
+            return
         word = np.uint32(self.colour_word(st, st.colour))
         mask = np.uint32(st.cmask & layers.index_bits(win))
         pat = self.patterns.get(st.pattern) if st.pattern else None
