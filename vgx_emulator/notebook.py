@@ -144,12 +144,9 @@ class LiveView:
         self._shown = time.perf_counter()
 
     def _run(self):
-        import runpy
-        import sys
         from irisgl._current import machine as m
         from . import menus
-        from .events import QueueExhausted
-        from .runner import FramesDone
+        from .runner import FramesDone, execute
         m.reset()
         if self.menu is not None:
             menus.script(self.menu, m)
@@ -178,20 +175,9 @@ class LiveView:
                     continue
                 self._deliver(m, item)
 
-        m.frame_hook = on_frame
-        m.events.wait_hook = on_wait
-        old_argv = sys.argv
-        sys.argv = [self.path] + self.argv
         try:
-            runpy.run_path(self.path, run_name="__main__")
-        except (FramesDone, QueueExhausted):
-            pass
+            execute(m, self.path, self.argv, {"frame": on_frame, "wait": on_wait})
         except SystemExit as e:
-            if e.code not in (0, None):
-                self.error = e
+            self.error = e
         except Exception as e:            # shown to the notebook by wait()
             self.error = e
-        finally:
-            sys.argv = old_argv
-            m.frame_hook = None
-            m.events.wait_hook = None

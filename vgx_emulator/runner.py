@@ -102,13 +102,25 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
             drawn["polls"] = 0
             machine.events._wait()
 
-    machine.frame_hook = on_frame
-    machine.events.wait_hook = on_wait
-    machine.events.poll_hook = on_poll
     if trace is not None:
         trace.install(machine)
+    return execute(machine, path, argv, {"frame": on_frame, "wait": on_wait, "poll": on_poll},
+                   cleanup=trace.uninstall if trace is not None else None)
+
+
+def execute(machine, path, argv, hooks, cleanup=None):
+    """Run ``path`` as ``__main__`` with ``argv`` and the machine's hooks
+    set (``frame``, ``wait``, ``poll``, ``display``, ``chooser``: see
+    machine.py, events.py, menus.py), then clear them and run ``cleanup``;
+    a clean end (FramesDone, an exhausted queue, exit status 0) returns
+    what the screen shows of the current window (or of the last one closed)."""
+    places = {"frame": (machine, "frame_hook"), "wait": (machine.events, "wait_hook"),
+              "poll": (machine.events, "poll_hook"), "display": (machine, "display_hook"),
+              "chooser": (machine.menus, "chooser")}
+    for k, v in hooks.items():
+        setattr(*places[k], v)
     old_argv = sys.argv
-    sys.argv = [str(path)] + argv
+    sys.argv = [str(path)] + list(argv or [])
     try:
         runpy.run_path(str(path), run_name="__main__")
     except (FramesDone, QueueExhausted):
@@ -118,11 +130,10 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
             raise
     finally:
         sys.argv = old_argv
-        machine.frame_hook = None
-        machine.events.wait_hook = None
-        machine.events.poll_hook = None
-        if trace is not None:
-            trace.uninstall()
+        for k in hooks:
+            setattr(*places[k], None)
+        if cleanup is not None:
+            cleanup()
     if machine.current is not None:
         return machine.image(machine.current)
     return machine.last_image
@@ -145,31 +156,10 @@ def run_window(path, argv=None, fps=30.0, frames=None):
         if frames is not None and drawn["n"] >= frames:
             raise FramesDone()
 
-    machine.frame_hook = on_frame
-    machine.events.wait_hook = display.wait
-    machine.menus.chooser = display.popup
-    machine.display_hook = display.drawn
-    machine.events.poll_hook = display.poll
-    old_argv = sys.argv
-    sys.argv = [str(path)] + list(argv or [])
-    try:
-        runpy.run_path(str(path), run_name="__main__")
-    except (FramesDone, QueueExhausted):
-        pass
-    except SystemExit as e:
-        if e.code not in (0, None):
-            raise
-    finally:
-        sys.argv = old_argv
-        machine.frame_hook = None
-        machine.events.wait_hook = None
-        machine.menus.chooser = None
-        machine.display_hook = None
-        machine.events.poll_hook = None
-        display.close_all()
-    if machine.current is not None:
-        return machine.image(machine.current)
-    return machine.last_image
+    return execute(machine, path, argv,
+                   {"frame": on_frame, "wait": display.wait, "poll": display.poll,
+                    "display": display.drawn, "chooser": display.popup},
+                   cleanup=display.close_all)
 
 
 def main(argv=None):
