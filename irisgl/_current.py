@@ -40,61 +40,36 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
         if inside:
             _INSIDE_OK.add(name)
 
-            @functools.wraps(f)
-            def call(*args):
-                try:
-                    if machine.recording is not None and name not in _immediate():
-                        return _record(name, call, args)
-                    if machine.call_hook is not None:    # trace.py: names the passes' calls
-                        return machine.call_hook(name, f, args)
-                    return f(*args)
-                except GLError as e:
-                    if is_lenient():
-                        report(e)
-                        return None
-                    raise
-                except TypeError:
-                    e = _arity_error(name, f, args)
-                    if e is None:
-                        raise
-                    if is_lenient():
-                        report(e)
-                        return None
-                    raise e from None
-        else:
-            @functools.wraps(f)
-            def call(*args):
-                try:
-                    if machine.recording is not None and name not in _immediate():
-                        return _record(name, call, args)
+        @functools.wraps(f)
+        def call(*args):
+            try:
+                if machine.recording is not None and name not in IMMEDIATE:
+                    return _record(name, call, args)
+                if not inside:
                     w = machine.current
                     if w is not None and w.batch.open is not None:
                         fail(name, f"not allowed inside bgn{_kind(w)}",
                              "only v*, n*, c*, color, cpack, RGBcolor, t*, lmdef, "
                              "lmbind, lmcolor and swaptmesh may appear there")
-                    if machine.call_hook is not None:    # trace.py: names the passes' calls
-                        return machine.call_hook(name, f, args)
-                    return f(*args)
-                except GLError as e:
-                    if is_lenient():
-                        report(e)
-                        return None
+                if machine.call_hook is not None:    # trace.py: names the passes' calls
+                    return machine.call_hook(name, f, args)
+                return f(*args)
+            except GLError as e:
+                if is_lenient():
+                    report(e)
+                    return None
+                raise
+            except TypeError:
+                e = _arity_error(name, f, args)
+                if e is None:
                     raise
-                except TypeError:
-                    e = _arity_error(name, f, args)
-                    if e is None:
-                        raise
-                    if is_lenient():
-                        report(e)
-                        return None
-                    raise e from None
+                if is_lenient():
+                    report(e)
+                    return None
+                raise e from None
         call.__wrapped__ = f
         return call
     return wrap(fn) if fn is not None else wrap
-
-
-def _immediate():
-    return IMMEDIATE
 
 
 def _arity_error(name, f, args):
