@@ -107,8 +107,11 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     a = FLAT[s, 3]
                 frag(bt, x, y, z, r, g, b, a, planes, ip)
 
-    frag = _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)
-    return njit(bind_globals(draw_lines, frag=frag))
+    # ``frag`` is a global of draw_lines (bind_globals), never a local here: a
+    # closure cell holding a dispatcher pickles differently in every process,
+    # and numba's disk cache would then never serve the kernel
+    return njit(bind_globals(draw_lines, frag=_fragment(ztest, zwrite, color, cmode, stencil,
+                                                      blend, logic, atest, cmask, dual)))
 
 
 def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
@@ -130,6 +133,9 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 continue
             frag(bt, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5], P[i, 6], planes, ip)
 
-    frag = _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)
-    return njit(bind_globals(draw_points, frag=frag))
+    # ``frag`` is a global of draw_points (bind_globals), never a local here: a
+    # closure cell holding a dispatcher pickles differently in every process,
+    # and numba's disk cache would then never serve the kernel
+    return njit(bind_globals(draw_points, frag=_fragment(ztest, zwrite, color, cmode, stencil,
+                                                      blend, logic, atest, cmask, dual)))
 

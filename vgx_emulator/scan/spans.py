@@ -6,6 +6,8 @@ import math
 import numpy as np
 
 from ..jit import bind_globals, njit
+from ..raster import fragment as F
+from ..raster.blend import key_terms
 from ..raster.depth import masked_write
 from ..raster.variants import KERNEL_SOURCE_HASH, cache_tag
 
@@ -80,8 +82,6 @@ def pixel_kernel(key):
 
 def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                        stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    from ..raster import fragment as F
-    from ..raster.blend import key_terms
     src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
                          logic, atest, pattern, cmask, texture, dual)
     bterms = key_terms(blend)
@@ -114,6 +114,8 @@ def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     a = float((v >> 24) & 0xFF)
                 frag(bt, x, y, 0.0, r, g, b, a, planes, ip)
 
-    frag = F.fragment_function(False, False, color, cmode, False, blend, logic, atest, False,
-                               cmask, dual)
-    return njit(bind_globals(write_pixels, frag=frag))
+    # ``frag`` is a global of write_pixels (bind_globals), never a local here:
+    # as a closure cell its dispatcher would pickle differently in every
+    # process and numba's disk cache would never serve the kernel
+    return njit(bind_globals(write_pixels, frag=F.fragment_function(
+        False, False, color, cmode, False, blend, logic, atest, False, cmask, dual)))
