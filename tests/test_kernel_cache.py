@@ -36,3 +36,34 @@ def test_kernel_closures_pickle_the_same_in_every_process():
     names = {line.split()[0] for line in first if line}
     assert {"draw_lines", "draw_points", "write_pixels"} <= names
     assert first == second
+
+
+DRAW = r"""
+from irisgl import *
+prefsize(16, 16); winopen("x"); RGBmode(); gconfig()
+ortho2(-0.5, 15.5, -0.5, 15.5)
+cpack(0xffffffff); clear(); move2(1, 1); draw2(10, 12); rectf(2, 2, 5, 5); gflush()
+print(int(lrectread(3, 3, 3, 3)[0, 0]))
+"""
+
+
+def _draw(cache_dir):
+    import os
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir))
+    return subprocess.run([sys.executable, "-c", DRAW], capture_output=True, text=True,
+                          timeout=600, env=env)
+
+
+def test_a_damaged_cache_is_compiled_again_not_fatal(tmp_path):
+    """Garbage in every index and data file of the cache: the next run
+    compiles again and draws the same, instead of dying with UnpicklingError."""
+    first = _draw(tmp_path)
+    assert first.returncode == 0, first.stderr
+    files = [p for p in tmp_path.rglob("*") if p.suffix in (".nbi", ".nbc")]
+    assert files
+    for p in files:
+        data = p.read_bytes()
+        p.write_bytes(data[:len(data) // 3] + b"\x80garbage")
+    again = _draw(tmp_path)
+    assert again.returncode == 0, again.stderr[-2000:]
+    assert again.stdout == first.stdout

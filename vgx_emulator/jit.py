@@ -16,6 +16,40 @@ from . import config
 _opts = dict(config.JIT_OPTIONS)
 
 
+def _tolerate_damaged_cache():
+    """A damaged file in numba's disk cache (a truncated index, a garbled
+    data file: a disk filled up, two processes killed while writing) counts
+    as missing: the kernel is compiled again and the file written anew.
+    Without this, numba raises UnpicklingError (or EOFError ...) from every
+    later run that loads the file, and the emulator cannot start."""
+    from numba.core import caching
+    cls = caching.IndexDataCacheFile
+    if getattr(cls, "_vgx_tolerant", False):
+        return
+    load_index, load_data = cls._load_index, cls._load_data
+
+    def _load_index(self):
+        try:
+            return load_index(self)
+        except OSError:
+            raise
+        except Exception:           # unreadable: as if there were no index yet
+            return {}
+
+    def _load_data(self, name):
+        try:
+            return load_data(self, name)
+        except OSError:
+            raise
+        except Exception as e:      # numba's load() treats OSError as a missing file
+            raise OSError(f"damaged numba cache file {name}: {e}") from e
+
+    cls._load_index, cls._load_data, cls._vgx_tolerant = _load_index, _load_data, True
+
+
+_tolerate_damaged_cache()
+
+
 def njit(fn=None, **extra):
     """numba.njit with the project's options (cache on, fastmath off)."""
     opts = dict(_opts, **extra)
