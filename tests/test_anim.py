@@ -136,3 +136,21 @@ def test_gallery_writes_the_animation_next_to_the_png(tmp_path):
     assert Image.open(gif).n_frames == 18
     assert (tmp_path / "tessman_flat_shadows__moving.png").is_file()
     assert "tessman_flat_shadows__moving.gif" in (tmp_path / "index.html").read_text()
+
+
+def test_mp4_has_one_frame_per_program_frame(tmp_path):
+    """With the [video] extra: the MP4 holds every frame, close to the PNG
+    of that frame (H.264 is lossy: mean error a few levels of 255)."""
+    imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    frames = []
+    run_program(TESSMAN, 3, ["--figure", "moving"], collect=frames)
+    path = save_animation(tmp_path / "a.mp4", frames, fps=30.0)
+    reader = imageio_ffmpeg.read_frames(str(path))
+    meta = reader.__next__()
+    w, h = meta["size"]
+    got = [np.frombuffer(b, np.uint8).reshape(h, w, 3) for b in reader]
+    assert len(got) == 3
+    for g, f in zip(got, frames):
+        err = np.abs(g[:f.shape[0], :f.shape[1]].astype(int) - f.astype(int)).mean()
+        assert err < 6
+    assert np.abs(got[0].astype(int) - got[2].astype(int)).mean() > 0.5   # the light moved
