@@ -37,6 +37,7 @@ def mapcolor(i, r, g, b):
     """mapcolor(3G): entry i of the current drawmode's map := (r, g, b),
     components clamped to 0..255; an index outside the map is ignored.
     Pixels already drawn change colour (the map is applied at scan-out)."""
+    win("mapcolor")             # a window first, as every drawing-state call
     i = integer("mapcolor", i, "index")
     c = [min(max(integer("mapcolor", v, "component"), 0), 255) for v in (r, g, b)]
     slot = _map_slot(i)

@@ -32,6 +32,8 @@ def _out(call, parray, n):
     elements (a longer C buffer is filled in its first n, as C does)."""
     if parray is None:
         return
+    if isinstance(parray, np.ndarray) and not parray.flags.writeable:
+        fail(call, "parray is a read-only array", "pass a writable array, or nothing")
     size = parray.size if isinstance(parray, np.ndarray) else (
         len(parray) if isinstance(parray, list) else -1)
     if size < n:
@@ -42,7 +44,7 @@ def _out(call, parray, n):
 def _fill(parray, words):
     """Store the flat pixel words in the first elements of parray."""
     if isinstance(parray, np.ndarray):
-        parray.reshape(-1)[:words.size] = words.astype(parray.dtype, copy=False)
+        parray.flat[:words.size] = words.astype(parray.dtype, copy=False)   # any layout
     else:
         parray[:words.size] = words.tolist()
 
@@ -123,15 +125,18 @@ def rectread(x1, y1, x2, y2, parray=None):
 
 def _write(call, x1, y1, x2, y2, parray, dtype):
     w = win(call)
-    x1, y1, x2, y2 = (integer(call, v) for v in (x1, y1, x2, y2))
-    if x2 < x1 or y2 < y1:
-        fail(call, f"({x1}, {y1})-({x2}, {y2}) is empty", "x1 <= x2, y1 <= y2")
+    x1, y1, x2, y2 = _rect(call, x1, y1, x2, y2)
     h, wd = y2 - y1 + 1, x2 - x1 + 1
     try:
         a = np.asarray(parray)
-        words = (a.astype(np.int64) & (0xFFFFFFFF if dtype == np.uint32 else 0xFFFF))
     except (TypeError, ValueError):
-        fail(call, "parray is not an array of integers", f"{h * wd} pixel words")
+        a = None
+    if a is None or not (a.dtype.kind in "iub" or (a.dtype == object and all(
+            isinstance(v, (int, np.integer)) for v in a.reshape(-1)))):
+        fail(call, "parray is not an array of integer pixel words",
+             f"{h * wd} {'32' if dtype == np.uint32 else '16'}-bit words (C: "
+             f"{'unsigned long' if dtype == np.uint32 else 'unsigned short'}), no floats")
+    words = a.astype(np.int64) & (0xFFFFFFFF if dtype == np.uint32 else 0xFFFF)
     if words.size < h * wd:
         fail(call, f"parray has {words.size} elements", f"(x2-x1+1)*(y2-y1+1) = {h * wd}")
     # a longer C array is read from its first elements

@@ -48,6 +48,7 @@ def _props(call, np_count, props, table):
 def texdef2d(index, nc, width, height, image, np, props):
     """texdef2d(3G): define texture ``index`` (> 0) of nc components
     (1 I, 2 IA, 3 RGB, 4 RGBA), width x height texels; the image is copied."""
+    win("texdef2d")             # a window first, as every drawing-state call
     i = integer("texdef2d", index, "index")
     nc = integer("texdef2d", nc, "components")
     w = integer("texdef2d", width, "width")
@@ -78,6 +79,7 @@ def texdef2d(index, nc, width, height, image, np, props):
 def tevdef(index, np, props):
     """tevdef(3G): define texture environment ``index`` (TV_MODULATE default,
     TV_DECAL, TV_BLEND with TV_COLOR r g b a)."""
+    win("tevdef")             # a window first, as every drawing-state call
     i = integer("tevdef", index, "index")
     if i <= 0:
         fail("tevdef", f"index {i}", "index 0 is the null environment; use 1 and up")

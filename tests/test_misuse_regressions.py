@@ -130,3 +130,51 @@ def test_bad_arguments_are_glerrors_naming_the_call(open_window, call, args, nam
 def test_getgdesc_of_a_non_integer_inquiry_is_minus_one():
     assert getgdesc(float("inf")) == -1
     assert getgdesc("x") == -1
+
+
+@pytest.mark.parametrize("call", [lambda: mapcolor(1, 2, 3, 4),
+                                  lambda: texdef2d(1, 4, 1, 1, [0], 0, [0]),
+                                  lambda: tevdef(1, 0, [0])])
+def test_definitions_before_winopen_are_errors(call):
+    with pytest.raises(GLError, match="no window is open"):
+        call()
+
+
+def test_a_string_in_an_lmdef_list_is_a_glerror(open_window):
+    open_window(8, 8)
+    with pytest.raises(GLError, match="^lmdef: property list holds 'a'"):
+        lmdef(DEFMATERIAL, 1, 0, [DIFFUSE, "a", 0, 0, LMNULL])
+    assert 1 not in machine.defs[lighting_index()]
+
+
+def lighting_index():
+    from vgx_emulator.geometry import lighting
+    return lighting.DEFMATERIAL
+
+
+@pytest.mark.parametrize("words", [np.zeros(4), np.full(4, np.nan), [0.5, 1, 2, 3]])
+def test_lrectwrite_of_floats_is_a_glerror(open_window, words):
+    open_window(8, 8)
+    cpack(0xFF445566)
+    clear()
+    with pytest.raises(GLError, match="^lrectwrite: parray is not an array of integer"):
+        lrectwrite(0, 0, 1, 1, words)
+    assert (lrectread(0, 0, 7, 7) == 0xFF445566).all()
+
+
+def test_read_only_output_array_is_a_glerror(open_window):
+    open_window(8, 8)
+    ro = np.zeros(4, np.uint32)
+    ro.flags.writeable = False
+    with pytest.raises(GLError, match="^lrectread: parray is a read-only array"):
+        lrectread(0, 0, 1, 1, ro)
+
+
+def test_lrectread_fills_a_strided_array_in_place(open_window):
+    open_window(8, 8)
+    cpack(0xFF010203)
+    clear()
+    big = np.zeros((4, 4), np.uint32)
+    view = big[:, ::2]                     # 8 elements, not contiguous
+    assert lrectread(0, 0, 1, 3, view) == 8
+    assert (big[:, ::2] == 0xFF010203).all() and (big[:, 1::2] == 0).all()

@@ -218,7 +218,9 @@ def test_fullscrn_whole_screen_then_back(open_window):
 
 
 def test_ginit_opens_full_screen_window_and_resets_colormap():
-    mapcolor(1, 1, 2, 3)
+    prefsize(8, 8)
+    winopen("before")
+    mapcolor(1, 1, 2, 3)                     # mapcolor needs a window (a GLError before)
     ginit()
     assert getsize() == (1280, 1024) and getorigin() == (0, 0)
     assert getdisplaymode() == DMSINGLE      # colour map, single buffer

@@ -54,6 +54,14 @@ def defaults(deftype):
     return {tok: tuple(d) for tok, (_, d) in PROPERTIES[deftype].items()}
 
 
+def _is_number(v):
+    try:
+        float(v)
+        return True
+    except (TypeError, ValueError):
+        return False
+
+
 def parse_properties(call, deftype, np_count, props):
     """Read an lmdef property list up to LMNULL; returns {token: values}.
 
@@ -62,7 +70,12 @@ def parse_properties(call, deftype, np_count, props):
     LMNULL; nothing is changed by the caller in that case.
     """
     table = PROPERTIES[deftype]
-    vals = [float(v) for v in props]
+    try:
+        vals = [float(v) for v in props]
+    except (TypeError, ValueError):
+        bad = next(v for v in props if not _is_number(v))
+        fail(call, f"property list holds {bad!r}, not a number",
+             "tokens and their values as numbers, ending with LMNULL")
     if np_count:
         if np_count < 1:
             fail(call, f"np = {np_count} but the property list has {len(vals)} floats",
