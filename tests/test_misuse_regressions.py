@@ -178,3 +178,23 @@ def test_lrectread_fills_a_strided_array_in_place(open_window):
     view = big[:, ::2]                     # 8 elements, not contiguous
     assert lrectread(0, 0, 1, 3, view) == 8
     assert (big[:, ::2] == 0xFF010203).all() and (big[:, 1::2] == 0).all()
+
+
+def test_dropped_primitive_warning_names_the_call_that_drew_it(open_window):
+    import warnings
+    open_window(16, 16)
+    ortho2(-0.5, 15.5, -0.5, 15.5)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        rectf(0, 0, float("nan"), 5)
+        gflush()
+    assert [str(x.message).split(":")[0] for x in w] == ["rectf"]
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        bgnpolygon()
+        v3f((float("nan"), 0, 0))
+        v3f((1, 1, 0))
+        v3f((2, 0, 0))
+        endpolygon()
+        gflush()
+    assert [str(x.message).split(":")[0] for x in w] == ["v*/n3f/c*/t*"]

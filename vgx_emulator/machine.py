@@ -452,6 +452,7 @@ class VGX:
             self._flush(win)
         b.klass = klass
         b.open = (kind, call)
+        b.calls.add(call)
         b.start = len(b.akey)
         b.cap = b.start + config.MAX_POLYGON_VERTICES if kind == POLYGON else 1 << 62
 
@@ -540,7 +541,7 @@ class VGX:
         v0 = b.nverts
         pts = np.ascontiguousarray(pts, np.float64).reshape(-1, 4)
         b.add_vertices(pts, np.full(len(pts), b.cur, np.int64))
-        b.add_block(np.array([[kind, v0, len(pts), 0]], np.int64))
+        b.add_block(np.array([[kind, v0, len(pts), 0]], np.int64), call)
         b.xf_dirty = True             # the next vertices use the matrices in force again
         b.dirty = True
 

@@ -240,6 +240,13 @@ def _assemble_table(batch, pos, table):
     return tris[order], prov[order]
 
 
+def _callers(batch):
+    """The calls a dropped-primitive warning names: those whose primitives
+    the batch holds (``v*/n3f/c*/t*`` for the bgn/end pairs' vertices)."""
+    names = {"v*/n3f/c*/t*" if c.startswith("bgn") else c for c in batch.calls}
+    return "/".join(sorted(names)) or "v*/n3f/c*/t*"
+
+
 def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=True,
                   linestyles=None):
     """Run the geometry pipeline over ``batch``; returns a WindowWork.
@@ -333,7 +340,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         depthcue.apply(work, st)        # depthcue(3G): colour from window z
     lines2d.smooth(work, st, snap, mode == "line")   # linesmooth/pntsmooth(3G) coverage
     if work.dropped:
-        warn("v*/n3f/c*/t*", f"{work.dropped} primitive(s) with a non-finite vertex, "
+        warn(_callers(batch), f"{work.dropped} primitive(s) with a non-finite vertex, "
              "normal, colour, texture coordinate or transformed position (or one the "
              "perspective divide cannot place) dropped")
     return work

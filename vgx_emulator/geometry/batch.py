@@ -59,6 +59,7 @@ class VertexBatch:
         self.prims = []             # (kind, start, count, concave) of immediate primitives
         self.blocks = []            # earlier primitives as (P, 4) int64 arrays, in order
         self.swaps = []             # global vertex indices with a swaptmesh before them
+        self.calls = set()          # the calls whose primitives are in the batch (warnings)
         self.klass = None
         self.start = 0              # len(akey) where the open primitive starts
         self.cur = -1
@@ -97,13 +98,15 @@ class VertexBatch:
         self.dirty = True
         return self.abase - len(recs)
 
-    def add_block(self, table):
+    def add_block(self, table, call="callobj"):
         """Append primitives (P, 4) [kind, start, count, concave] as one block
-        (display-list replay), after the immediate ones already recorded."""
+        (display-list replay, NURBS, curveit: ``call`` names it in warnings),
+        after the immediate ones already recorded."""
         if self.prims:
             self.blocks.append(np.array(self.prims, np.int64).reshape(-1, 4))
             self.prims = []
         self.blocks.append(table)
+        self.calls.add(call)
 
     def prim_table(self):
         """Every primitive of the batch in submission order, (P, 4) int64."""
@@ -146,7 +149,9 @@ class VertexBatch:
         swaps = [s - first for s in self.swaps if s >= first]
         keep = (self.attrs, self.ablocks, self.abase, self.xforms, self.mats, self.klass)
         cap = self.cap - self.start
+        calls = {self.open[1]} if self.open else set()
         self.reset()
+        self.calls = calls
         self.cap = cap
         self.pos, self.akey, self.swaps = pos, akey, swaps
         self.attrs, self.ablocks, self.abase, self.xforms, self.mats, self.klass = keep

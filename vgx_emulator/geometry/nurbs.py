@@ -268,7 +268,7 @@ def feed(machine, win, kind, pos, prims, normals=None, colours=None, tex=None,
     table[:, 0] = kind
     table[:, 1] = np.asarray(prims)[:, 0] + v0
     table[:, 2] = np.asarray(prims)[:, 1]
-    b.add_block(table)
+    b.add_block(table, "endsurface" if kind != LINE else "endcurve/endsurface")
     b.dirty = True
 
 
