@@ -276,6 +276,18 @@ def _check_bitmaps(call, offset, w, h, nr):
              "each bitmap is h rows of (w + 15) / 16 shorts inside raster")
 
 
+def _font_counts(call, n, nc, nr):
+    """nc (records) and nr (raster shorts) of a font definition; nc = 0
+    deletes font n (defrasterfont(3G), deflfont(3G))."""
+    nc = integer(call, nc, "nc")
+    nr = integer(call, nr, "nr")
+    if nc < 0 or nr < 0:
+        fail(call, f"nc = {nc}, nr = {nr}", "counts are >= 0")
+    if nc == 0:
+        machine.fonts.pop(n, None)
+    return nc, nr
+
+
 @glcall(immediate=True)
 def defrasterfont(n, ht, nc, chars, nr, raster):
     """defrasterfont(3G): font n from nc Fontchar records (offset, w, h,
@@ -284,12 +296,8 @@ def defrasterfont(n, ht, nc, chars, nr, raster):
     call = "defrasterfont"
     n = _font_number(call, n)
     ht = integer(call, ht, "ht")
-    nc = integer(call, nc, "nc")
-    nr = integer(call, nr, "nr")
-    if nc < 0 or nr < 0:
-        fail(call, f"nc = {nc}, nr = {nr}", "counts are >= 0")
+    nc, nr = _font_counts(call, n, nc, nr)
     if nc == 0:
-        machine.fonts.pop(n, None)
         return
     rec = _records(call, chars, nc, 6, "Fontchar")
     rs = _raster(call, raster, nr)
@@ -312,12 +320,8 @@ def deflfont(n, nc, chars, nr, raster):
     added to the character position after each character."""
     call = "deflfont"
     n = _font_number(call, n)
-    nc = integer(call, nc, "nc")
-    nr = integer(call, nr, "nr")
-    if nc < 0 or nr < 0:
-        fail(call, f"nc = {nc}, nr = {nr}", "counts are >= 0")
+    nc, nr = _font_counts(call, n, nc, nr)
     if nc == 0:
-        machine.fonts.pop(n, None)
         return
     rec = _records(call, chars, nc, 8, "Lfontchar")
     rs = _raster(call, raster, nr)

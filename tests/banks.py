@@ -6,9 +6,9 @@ arrays are (h, w) int64 with row 0 at the bottom, as IRIS GL reads them.
 """
 import numpy as np
 
-from irisgl import (GD_ZMAX, GOURAUD, SRC_AUTO, SRC_ZBUFFER, TRUE, czclear, gconfig,
-                    getgdesc, getsize, lrectread, ortho, readsource, rectf, rectread, sclear,
-                    shademodel, stensize, subpixel, zbuffer)
+from irisgl import (GD_ZMAX, GOURAUD, SRC_AUTO, SRC_ZBUFFER, TRUE, clear, cpack, czclear,
+                    gconfig, getgdesc, getsize, lrectread, ortho, ortho2, readsource, rectf,
+                    rectread, sclear, shademodel, stensize, subpixel, zbuffer)
 
 
 def box(x1, y1, x2, y2):
@@ -17,6 +17,21 @@ def box(x1, y1, x2, y2):
     the fill rule)."""
     subpixel(TRUE)
     rectf(x1 - 0.5, y1 - 0.5, x2 + 0.5, y2 + 0.5)
+
+
+def pixel_window(open_window, w, h):
+    """A w x h RGB window where one unit is one pixel, pixel centres on
+    integers; cleared to 0, drawing in white."""
+    open_window(w, h)
+    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
+    cpack(0)
+    clear()
+    cpack(0xFFFFFFFF)
+
+
+def lit(w, h):
+    """(h, w) bool: the pixels of the window that are not 0."""
+    return lrectread(0, 0, w - 1, h - 1) != 0
 
 
 def depth_stencil_window(open_window, w, h):

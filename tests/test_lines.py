@@ -7,20 +7,18 @@ import pytest
 from irisgl import *
 from irisgl._current import machine
 
+import banks
+
 W, H = 64, 48
 
 
 @pytest.fixture
 def win(open_window):
-    open_window(W, H)
-    ortho2(-0.5, W - 0.5, -0.5, H - 0.5)      # one unit = one pixel, centres on integers
-    cpack(0)
-    clear()
-    cpack(0xFFFFFFFF)
+    banks.pixel_window(open_window, W, H)
 
 
 def lit():
-    return lrectread(0, 0, W - 1, H - 1) != 0
+    return banks.lit(W, H)
 
 
 def row(y):
