@@ -1,10 +1,10 @@
-"""Primitives and the current colour and normal (reference section 3).
+"""Primitives and the current colour and normal (docs/semantics.md §3).
 
 bgn/end pairs collect vertices; ``v2*``/``v3*``/``v4*`` take C arrays in the
 s/i/f/d flavours (z = 0 and w = 1 where not given).  Old-style calls
 (rect, rectf, poly, polf, pnt, move, draw) go through the same stream.
 Colours: ``c3f``/``c4f`` take 0.0-1.0, the integer forms 0-255; values above
-the maximum are clamped, below 0 clamped to 0 ([S], reference 3.1); c3* sets
+the maximum are clamped, below 0 clamped to 0 (docs/semantics.md §3); c3* sets
 alpha to the maximum.
 """
 import math

@@ -22,7 +22,7 @@ BF_MIN_SA_MDA    8   min(SA, 1 - DA)       s
 
 logicop: s = incoming word, d = stored word, bitwise on all 32 bits (RGB
 mode) or on the index (colour-map mode); a logicop other than LO_SRC
-replaces blending ([S], reference 7).
+replaces blending (left open by logicop(3G): docs/semantics.md §7).
 """
 from ..jit import helper, inline
 
@@ -41,7 +41,7 @@ _DST_TERMS = {**_SRC_TERMS, 2: (0, 1, 0, 0, 0, 0), 3: (255, -1, 0, 0, 0, 0)}
 def factor_terms(code, is_src):
     """The terms of blendfunction factor ``code`` as a source (sfactr) or
     destination (dfactr) factor: BF_DC/BF_MDC as source and BF_SC/BF_MSC as
-    destination share the values 2 and 3 (reference 7)."""
+    destination share the values 2 and 3 (blendfunction(3G))."""
     return (_SRC_TERMS if is_src else _DST_TERMS)[code]
 
 

@@ -2,9 +2,9 @@
 
 ``zfunction``: the incoming z is compared with the stored z; the fragment
 passes when ``incoming FUNC stored`` (default ZF_LEQUAL).  z is quantized to
-an integer (round to nearest) and clamped to the lsetdepth range (Decision 4).
+an integer (round to nearest) and clamped to the lsetdepth range (docs/semantics.md §5).
 ``zwritemask``: only the 1-bits of the 24-bit value are written; the plane
-holds signed 24-bit values sign-extended in int32 (Decision 3).
+holds signed 24-bit values sign-extended in int32 (docs/semantics.md §5).
 """
 import math
 

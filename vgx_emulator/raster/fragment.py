@@ -1,6 +1,6 @@
 """Per-fragment operations of the Raster Subsystem, in VGX order.
 
-Order (reference section 6 "Pipeline order", 7, 8; Decisions 1, 2):
+Order (docs/semantics.md §6 "Order of the pixel operations", §7, §8):
 
 1. scissor: viewport ∩ scrmask ∩ window (the walkers' pixel ranges)
 2. pattern: a 0 bit protects the pixel in every bank (filled primitives)
@@ -9,7 +9,7 @@ Order (reference section 6 "Pipeline order", 7, 8; Decisions 1, 2):
    fails -> ``fail`` op, nothing else written
 5. z test (zbuffer on): fails -> stencil ``pass`` op, nothing else written;
    passes -> stencil ``zpass`` op, z written under zwritemask.
-   z-buffer off and stencil passes -> ``pass`` op (Decision 1)
+   z-buffer off and stencil passes -> ``pass`` op (stencil(3G); docs/semantics.md §6)
 6. blend (blendfunction) or logicop, per colour buffer against its own pixel
 7. colour writemask, then every enabled colour buffer
 
@@ -150,7 +150,7 @@ def stage_function(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode):
         if stencil:
             m = prm[P_SMASK]
             spass = depth.compare(prm[P_SFUNC], i32(prm[P_SREF] & m), i32(sold & m))
-            # Decision 1: without a z-buffer a passing fragment takes the pass op
+            # stencil(3G): without a z-buffer a passing fragment takes the pass op
             zp = zpass if ztest else i32(0)
             # the three ops' results, then selections of int32 values by masks (a
             # selection of their terms widened the vector lanes to 64 bits)

@@ -1,4 +1,4 @@
-"""Stencil operations (stencil(3G), swritemask(3G); reference 6, Decision 2).
+"""Stencil operations (stencil(3G), swritemask(3G); docs/semantics.md §6).
 
 With n planes and max = 2**n - 1:
 

@@ -1,4 +1,5 @@
-"""Texture sampling and the texture environment, per fragment (reference 16).
+"""Texture sampling and the texture environment, per fragment (texdef2d(3G), tevdef(3G);
+docs/semantics.md §16).
 
 Sampling: texel (i, j) covers s in [i/W, (i+1)/W); POINT takes the texel
 under (s, t); BILINEAR weights the four nearest texel centres.  TX_REPEAT

@@ -14,7 +14,7 @@ field is a bool; only the combinations a program uses are compiled).
 ``KERNEL_SOURCE_HASH`` hashes the source of every module a kernel inlines;
 it is a closure constant of each factory-built kernel, so numba's disk cache
 (keyed on closure values) is invalidated when any of them changes
-(pitfalls c.4).
+(docs/architecture.md, Kernels).
 """
 import hashlib
 from collections import namedtuple

@@ -1,6 +1,6 @@
 """Lines and points (bgnline/bgnclosedline/move/draw, bgnpoint/pnt).
 
-IRIS GL rules (reference 1.5, [M-PG 15.1.2]):
+IRIS GL rules (bgnline(3G), subpixel(3G); docs/semantics.md §1):
 
 - a line is one pixel wide; it steps one pixel along its major axis and
   takes, on the minor axis, the pixel nearest the exact line;
@@ -9,7 +9,7 @@ IRIS GL rules (reference 1.5, [M-PG 15.1.2]):
 - sub-pixel lines are *half-open*: the last pixel is not drawn, so a (0,0)-(0,2)
   line fills (0,0) and (0,1) only;
 - z and colour are interpolated along the line (Gouraud) or taken from the
-  segment's last vertex (FLAT, Decision 6).
+  segment's last vertex (FLAT, docs/semantics.md §3).
 
 A point fills the pixel whose centre is nearest.  Patterns do not apply to
 lines and points (defpattern(3G)), so their kernels never run the pattern

@@ -72,7 +72,7 @@ _pixel_kernels = {}
 
 
 def pixel_kernel(key):
-    """lrectwrite/rectwrite/rectcopy writer for a raster key (Decision 11:
+    """lrectwrite/rectwrite/rectcopy writer for a raster key (docs/semantics.md §11:
     afunction, blend/logicop and writemasks apply; no z, stencil or pattern)."""
     k = _pixel_kernels.get(key)
     if k is None:

@@ -25,7 +25,7 @@ span (the span processor):
   to ``ZFRAC`` fractional bits, with fixed-point steps per pixel and per
   row (``plane_fixed``); a span starts at ``ref + dy * sy + dx * sx`` (two
   integer multiplies, no float work per row) and steps by sx along x.
-  Rounding to the stored integer is ``floor(z + 1/2)`` (Decision 4).  The
+  Rounding to the stored integer is ``floor(z + 1/2)`` (docs/semantics.md §5).  The
   error is below 2**-16 of a z unit anywhere in a scissored box.  A
   pixel's z depends only on its triangle and position, never on the band,
   span or thread, so multipass algorithms that redraw the same triangles
