@@ -1,5 +1,5 @@
 """vgx-run: run an unmodified ported IRIS GL program headless and save what
-it drew (porting conventions 4).
+it drew (docs/porting.md, "Running a program").
 
 The program runs as ``__main__``.  Every frame point (swapbuffers, gflush,
 finish) is counted; after ``--frames`` of them the program is stopped.  A
@@ -14,11 +14,17 @@ the program's dopup calls (docs/text-and-menus.md).  ``--out x.gif``
 (or ``.mp4``) saves every (``--every K``: every K-th) frame as an animation;
 ``--trace DIR`` pictures every bank after every pass of one frame
 (docs/trace.md).
+
+Usage: ``vgx-run [OPTIONS] PROGRAM.py [OPTIONS] [-- PROGRAM ARGS]``.  An
+option vgx-run does not know is an error (``--fames 3``); the program's own
+options go after ``--``, bare words are passed to the program as well.  A
+program that raises shows its own traceback, from its first frame on.
 """
 import argparse
 import runpy
 import sys
 import time
+import traceback
 from pathlib import Path
 
 from .display.png import write_png
@@ -162,6 +168,44 @@ def run_window(path, argv=None, fps=30.0, frames=None):
                    cleanup=display.close_all)
 
 
+def program_traceback(path, exc):
+    """The lines of ``exc``'s traceback from the first frame of the program
+    ``path`` on: the runner's and runpy's frames above it are left out.  For
+    a GLError (a call used wrongly) the frames inside irisgl and
+    vgx_emulator below the program's last frame are left out too: the
+    message names the call."""
+    from .errors import GLError
+    target = Path(path).resolve()
+
+    def in_program(tb):
+        try:
+            return Path(tb.tb_frame.f_code.co_filename).resolve() == target
+        except (OSError, ValueError):
+            return False
+
+    tb = exc.__traceback__
+    while tb is not None and not in_program(tb):
+        tb = tb.tb_next
+    if tb is None:                        # raised before the program ran
+        tb = exc.__traceback__
+    frames = traceback.extract_tb(tb)
+    if isinstance(exc, GLError):
+        import irisgl
+        inside = [Path(__file__).resolve().parent, Path(irisgl.__file__).resolve().parent]
+        while len(frames) > 1 and any(Path(frames[-1].filename).resolve().is_relative_to(d)
+                                      for d in inside):
+            frames.pop()
+    lines = ["Traceback (most recent call last):\n"] + traceback.format_list(frames)
+    return lines + traceback.format_exception_only(type(exc), exc)
+
+
+def _program_failed(prog, exc):
+    """Print the program's own traceback on standard error; exit status 1."""
+    sys.stderr.write("".join(program_traceback(prog, exc)))
+    print(f"vgx-run: {prog.name} stopped by {type(exc).__name__}", file=sys.stderr)
+    return 1
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="vgx-run", description=__doc__.splitlines()[0])
     ap.add_argument("program", help="a ported IRIS GL program (.py)")
@@ -184,8 +228,16 @@ def main(argv=None):
     ap.add_argument("--fps", type=float, default=30.0,
                     help="with --window: at most this many frames a second (default 30; "
                          "0 = unpaced); with --out .gif/.mp4: the animation's pace")
-    a, rest = ap.parse_known_args(argv)
-    a.args = [x for x in rest if x != "--"]
+    argv = list(sys.argv[1:] if argv is None else argv)
+    head, tail = (argv[:argv.index("--")], argv[argv.index("--") + 1:]) if "--" in argv \
+        else (argv, [])
+    a, rest = ap.parse_known_args(head)
+    unknown = [x for x in rest if x.startswith("-") and len(x) > 1]
+    if unknown:
+        ap.error(f"unrecognized option {unknown[0]} (vgx-run's options are listed by "
+                 f"--help; the program's own options go after --: "
+                 f"vgx-run {a.program} -- {unknown[0]} ...)")
+    a.args = rest + tail
     if a.frames < 1:
         ap.error("--frames must be >= 1")
     if a.menu is not None:
@@ -205,11 +257,13 @@ def main(argv=None):
         from .display.tkwindow import NoDisplay
         try:
             img = run_window(prog, a.args, a.fps,
-                             frames=a.frames if "--frames" in (argv or sys.argv) else None)
+                             frames=a.frames if "--frames" in head else None)
         except NoDisplay as e:
             print(f"vgx-run: no display for --window ({e}); run without --window to "
                   "run headless", file=sys.stderr)
             return 2
+        except Exception as e:
+            return _program_failed(prog, e)
         if img is None or a.out is None:
             return 0
         write_png(Path(a.out), img)
@@ -224,8 +278,11 @@ def main(argv=None):
         from .trace import Trace
         tr = Trace(a.trace_frame or a.frames, keep=False, outdir=a.trace)
     frames = [] if animate else None
-    img = run_program(prog, max(a.frames, a.trace_frame or 0), a.args, menu=a.menu,
-                      trace=tr, collect=frames, every=a.every)
+    try:
+        img = run_program(prog, max(a.frames, a.trace_frame or 0), a.args, menu=a.menu,
+                          trace=tr, collect=frames, every=a.every)
+    except Exception as e:
+        return _program_failed(prog, e)
     if tr is not None:
         index = tr.write(title=f"vgx-run --trace: {prog.name} {' '.join(a.args)}")
         print(f"vgx-run: {prog.name}: {len(tr.steps)} passes of frame {tr.frame} -> {index}")

@@ -1,0 +1,76 @@
+"""vgx-run's command line (vgx_emulator/runner.py): its own options are
+checked, the program's go after ``--``, and a program that raises shows its
+own traceback without the runner's frames."""
+import sys
+
+import pytest
+
+from vgx_emulator.runner import main as vgx_run
+
+PROGRAM = """\
+import sys
+from irisgl import *
+open(sys.argv[0] + ".args", "w").write(repr(sys.argv[1:]))
+prefsize(8, 8); winopen("cli"); RGBmode(); gconfig()
+cpack(0xFF0000FF); clear(); swapbuffers()
+"""
+
+
+def _write(tmp_path, text, name="prog.py"):
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def _args(prog):
+    return eval(open(str(prog) + ".args").read())
+
+
+def test_an_unknown_option_is_an_error_naming_it(tmp_path, capsys):
+    prog = _write(tmp_path, PROGRAM)
+    with pytest.raises(SystemExit) as e:
+        vgx_run([str(prog), "--fames", "3", "--out", str(tmp_path / "x.png")])
+    assert e.value.code == 2
+    err = capsys.readouterr().err
+    assert "unrecognized option --fames" in err and "after --" in err
+    assert not (tmp_path / "x.png").exists()          # nothing ran
+
+
+def test_program_options_go_after_the_double_dash(tmp_path):
+    prog = _write(tmp_path, PROGRAM)
+    assert vgx_run([str(prog), "--out", str(tmp_path / "x.png"), "--",
+                    "--fames", "3", "--out", "y"]) == 0
+    assert _args(prog) == ["--fames", "3", "--out", "y"]
+    assert (tmp_path / "x.png").is_file()
+
+
+def test_bare_words_reach_the_program(tmp_path):
+    prog = _write(tmp_path, PROGRAM)
+    assert vgx_run([str(prog), "exp2", "--out", str(tmp_path / "x.png")]) == 0
+    assert _args(prog) == ["exp2"]
+
+
+def test_a_program_error_shows_the_program_traceback_only(tmp_path, capsys):
+    helper = _write(tmp_path, "def boom(n):\n    return 1 // n\n", "helper.py")
+    prog = _write(tmp_path, "import sys\nsys.path.insert(0, %r)\nimport helper\n\n"
+                            "def draw():\n    helper.boom(0)\n\ndraw()\n" % str(helper.parent))
+    assert vgx_run([str(prog), "--out", str(tmp_path / "x.png")]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("Traceback (most recent call last):")
+    assert "ZeroDivisionError: integer division or modulo by zero" in err
+    assert f'File "{prog}", line 8, in <module>' in err
+    assert "in draw" in err and "helper.py" in err and "in boom" in err
+    assert "runner.py" not in err and "runpy" not in err
+
+
+def test_a_glerror_traceback_ends_at_the_program_call(tmp_path, capsys):
+    prog = _write(tmp_path, "from irisgl import *\nprefsize(8, 8); winopen('e')\n"
+                            "RGBmode(); gconfig()\npopmatrix()\n")
+    assert vgx_run([str(prog), "--out", str(tmp_path / "x.png")]) == 1
+    err = capsys.readouterr().err
+    lines = err.splitlines()
+    assert f'File "{prog}", line 4, in <module>' in err
+    assert "popmatrix()" in err
+    assert any(s.startswith("vgx_emulator.errors.GLError: popmatrix:")
+               or s.startswith("GLError: popmatrix:") for s in lines), err
+    assert "irisgl" + "/" not in err.replace(str(prog), "") and "runner.py" not in err
