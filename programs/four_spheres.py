@@ -13,16 +13,14 @@ a row along x, 2.3 apart, alternately 0.6 nearer and farther, seen from
 slightly above; each sphere a 32 x 16 latitude/longitude mesh drawn with
 bgnqstrip, a normal per vertex.  Written as an IRIS GL program of 1991
 would be: configuration, an event loop on REDRAW, swapbuffers.
+
+The gallery shows this picture once, as Williams fig. 1 of
+williams_shadow_zbuffer.py (which draws this scene), so the program lists
+no FIGURES of its own.
 """
 import math
 
 from irisgl import *
-
-FIGURES = [
-    {"name": "fig1", "args": [],
-     "caption": "Williams 1978, fig. 1: the observer's view of four spheres "
-                "(lit, no shadows yet)."},
-]
 
 WIDTH, HEIGHT = 640, 480
 SLICES, STACKS = 32, 16
