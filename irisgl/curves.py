@@ -56,6 +56,7 @@ def _basis(call, i):
 
 @glcall
 def curvebasis(id):
+    """curvebasis(3G): the basis (a defbasis id) of the curves that follow."""
     i = integer("curvebasis", id, "basis id")
     _basis("curvebasis", i)
     _state()["curvebasis"] = i
@@ -63,6 +64,7 @@ def curvebasis(id):
 
 @glcall
 def curveprecision(n):
+    """curveprecision(3G): each curve segment is drawn as n straight lines."""
     n = integer("curveprecision", n, "precision")
     if n < 1:
         fail("curveprecision", f"{n} segments", "at least 1")
@@ -119,12 +121,15 @@ def crvn(n, geom):
 
 @glcall
 def rcrvn(n, geom):
+    """rcrvn(3G): a rational curve through n homogeneous control points
+    (n - 3 segments in the current basis)."""
     b, prec = _curve_setup("rcrvn")
     _draw_polylines("rcrvn", C.curve_segments(b, _npoints("rcrvn", n, geom, 4), prec))
 
 
 @glcall
 def patchbasis(uid, vid):
+    """patchbasis(3G): the bases (defbasis ids) of patches in u and in v."""
     u = integer("patchbasis", uid, "basis id")
     v = integer("patchbasis", vid, "basis id")
     _basis("patchbasis", u)
@@ -134,6 +139,7 @@ def patchbasis(uid, vid):
 
 @glcall
 def patchcurves(ucurves, vcurves):
+    """patchcurves(3G): how many curves a patch is drawn with in u and in v."""
     u = integer("patchcurves", ucurves)
     v = integer("patchcurves", vcurves)
     if u < 0 or v < 0 or u + v == 0:
@@ -143,6 +149,8 @@ def patchcurves(ucurves, vcurves):
 
 @glcall
 def patchprecision(usegments, vsegments):
+    """patchprecision(3G): the least number of lines per patch curve in u and
+    in v (rounded up to a multiple of the other direction's curve count)."""
     u = integer("patchprecision", usegments)
     v = integer("patchprecision", vsegments)
     if u < 1 or v < 1:

@@ -25,6 +25,7 @@ def zbuffer(b):
 
 @glcall
 def getzbuffer():
+    """getzbuffer(3G): TRUE while z-buffering is on."""
     return int(win("getzbuffer").st.zbuffer)
 
 

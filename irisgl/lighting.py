@@ -64,7 +64,7 @@ def lmbind(target, index):
 
 @glcall
 def getlmbind(target):
-    """The index bound to a target (0 when none)."""
+    """getlmbind(3G): the definition bound to a target (0 when none)."""
     w = win("getlmbind")
     t = token("getlmbind", target, _TARGETS, "target")
     st = w.st

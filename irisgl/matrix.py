@@ -59,6 +59,7 @@ def mmode(m):
 
 @glcall
 def getmmode():
+    """getmmode(3G): the matrix mode (MSINGLE, MPROJECTION, MVIEWING, MTEXTURE)."""
     return win("getmmode").st.matrices.mode
 
 
@@ -133,6 +134,7 @@ def popmatrix():
 
 @glcall
 def translate(x, y, z):
+    """translate(3G): premultiply the current matrix by a translation."""
     _premultiply("translate", S.translation(num("translate", x), num("translate", y),
                                             num("translate", z)))
 
@@ -197,6 +199,8 @@ def _box(call, l, r, b, t, n=-1.0, f=1.0):
 
 @glcall
 def ortho(left, right, bottom, top, near, far):
+    """ortho(3G): a parallel projection of the box; loaded as the projection
+    (MSINGLE: the top of the stack)."""
     _load_projection("ortho", S.ortho(*_box("ortho", left, right, bottom, top, near, far)))
 
 
@@ -279,6 +283,7 @@ def scrmask(left, right, bottom, top):
 
 @glcall
 def getscrmask():
+    """getscrmask(3G): the screen mask as (left, right, bottom, top)."""
     return win("getscrmask").st.scrmask
 
 
@@ -294,6 +299,8 @@ def pushviewport():
 
 @glcall
 def popviewport():
+    """popviewport(3G): restore the viewport, screen mask and depth range
+    pushviewport saved."""
     w = win("popviewport")
     st = w.st
     if not st.viewport_stack:

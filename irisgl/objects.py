@@ -1,9 +1,10 @@
 """Display lists: makeobj, closeobj, callobj, genobj, isobj, delobj, editobj,
-maketag, gentag, istag, objreplace, objinsert, objdelete (reference 12).
+maketag, gentag, istag, objreplace, objinsert, objdelete (objects(3G),
+editobj(3G); docs/semantics.md §12).
 
 While an object is open, calls are recorded instead of executed, except the
 queries and immediate-only calls listed in ``IMMEDIATE`` ([S] where the
-reference leaves it open: every ``get*`` query, readers, window and
+man pages leave it open: every ``get*`` query, readers, window and
 configuration calls, defpattern, mapcolor, the event queue and the object
 calls themselves run immediately).  ``callobj`` replays; geometry is replayed
 as arrays (see vgx_emulator/objects.py).  Editing: ``editobj`` reopens an
@@ -123,6 +124,7 @@ def closeobj():
 
 @glcall
 def getopenobj():
+    """getopenobj(3G): the object open for recording or editing, -1 if none."""
     return machine.recording if machine.recording is not None else -1
 
 
@@ -137,6 +139,7 @@ def genobj():
 
 @glcall
 def isobj(obj):
+    """isobj(3G): TRUE when obj is a defined object."""
     return int(integer("isobj", obj, "object") in machine.objects)
 
 
@@ -245,6 +248,7 @@ def _tag_index(call, t):
 
 @glcall
 def gentag():
+    """gentag(3G): a tag number not used in the open object."""
     ob = machine.objects.get(machine.recording) if machine.recording else None
     used = {it[1] for it in ob.items if it[0] == "tag"} if ob else set()
     t = 1
@@ -255,6 +259,7 @@ def gentag():
 
 @glcall
 def istag(t):
+    """istag(3G): TRUE when tag t is in the object open for editing."""
     if machine.recording is None:
         return 0
     ob = machine.objects[machine.recording]

@@ -54,4 +54,5 @@ def setpattern(index):
 
 @glcall
 def getpattern():
+    """getpattern(3G): the index of the current pattern (0: solid)."""
     return win("getpattern").st.pattern

@@ -303,18 +303,21 @@ def shademodel(mode):
 @_export
 @glcall
 def getbackface():
+    """getbackface(3G): TRUE while backface removal is on."""
     return int(win("getbackface").st.backface)
 
 
 @_export
 @glcall
 def getsm():
+    """getsm(3G): the shading model, FLAT or GOURAUD."""
     return K.GOURAUD if win("getsm").st.gouraud else K.FLAT
 
 
 @_export
 @glcall
 def getcolor():
+    """getcolor(3G): the current colour index (colour-map mode; 0 in RGB mode)."""
     st = win("getcolor").st
     return int(st.colour[0] + 0.5) if not st.rgb else 0     # colorf: the index written
 

@@ -60,4 +60,5 @@ def swritemask(mask):
 
 @glcall
 def getstensize():
+    """The stencil planes configured (stensize(3G); getgconfig(GC_BITS_STENCIL))."""
     return win("getstensize").fb.stencil_planes

@@ -46,17 +46,19 @@ def _gid(call, gid):
 
 @glcall
 def winclose(gid):
+    """winclose(3G): close window gid (its banks are freed)."""
     machine.winclose(_gid("winclose", gid))
 
 
 @glcall
 def winset(gid):
+    """winset(3G): make window gid the current window."""
     machine.winset(_gid("winset", gid))
 
 
 @glcall
 def winget():
-    """The current window's id (0 when none is open)."""
+    """winget(3G): the current window's id (0 when none is open)."""
     return machine.current.gid if machine.current else 0
 
 
@@ -145,21 +147,25 @@ def getorigin():
 
 @glcall
 def RGBmode():
+    """RGBmode(3G): ask for RGB mode (colours as 0xAABBGGRR words); takes effect at gconfig."""
     win("RGBmode").st.req_rgb = True
 
 
 @glcall
 def cmode():
+    """cmode(3G): ask for colour-map mode (12-bit indices); takes effect at gconfig."""
     win("cmode").st.req_rgb = False
 
 
 @glcall
 def doublebuffer():
+    """doublebuffer(3G): ask for a front and a back buffer; takes effect at gconfig."""
     win("doublebuffer").st.req_double = True
 
 
 @glcall
 def singlebuffer():
+    """singlebuffer(3G): ask for one colour buffer; takes effect at gconfig."""
     win("singlebuffer").st.req_double = False
 
 
@@ -217,6 +223,8 @@ def getgconfig(what):
 
 @glcall
 def getdisplaymode():
+    """getdisplaymode(3G): DMRGB, DMSINGLE, DMDOUBLE or DMRGBDOUBLE for the
+    current window's configuration."""
     st = win("getdisplaymode").st
     if st.rgb:
         return K.DMRGBDOUBLE if st.double else K.DMRGB
@@ -275,6 +283,8 @@ def frontbuffer(b):
 
 @glcall
 def backbuffer(b):
+    """backbuffer(3G): enable or disable drawing into the back buffer
+    (double-buffered windows; ignored in single-buffer mode)."""
     w = win("backbuffer")
     v = boolean("backbuffer", b)
     machine.state_change(w)
