@@ -21,10 +21,10 @@ import numpy as np
 from irisgl import (AMBIENT, DEFLIGHT, DEFLMODEL, DEFMATERIAL, DIFFUSE, FALSE, GD_ZMAX, LCOLOR,
                     LIGHT0, LMNULL, LMODEL, MATERIAL, MVIEWING, POSITION, RGBmode, SF_EQUAL,
                     SPECULAR, ST_KEEP, TRUE, acsize, bgnpolygon, clear, closeobj, cpack,
-                    czclear, endpolygon, gconfig, genobj, getgdesc, lmbind, lmdef, loadmatrix,
-                    lookat, makeobj, mmode, n3f, ortho, ortho2, perspective, popmatrix,
-                    prefsize, pushmatrix, rectf, stencil, stensize, subpixel, v3f, winopen,
-                    winset, zbuffer)
+                    czclear, delobj, endpolygon, gconfig, genobj, getgdesc, lmbind, lmdef,
+                    loadmatrix, lookat, makeobj, mmode, n3f, ortho2, perspective, popmatrix,
+                    prefsize, pushmatrix, rectf, stencil, stensize, subpixel, v3f, winclose,
+                    winopen, winset, zbuffer)
 from programs import shadowbuf as sb
 
 MYZERO = 128                 # Heidmann's stencil "zero"
@@ -37,8 +37,9 @@ IDENTITY = np.identity(4)
 class Stage:
     """The eye's window, the light's windows and the compiled scene."""
 
-    def __init__(self, scene, width, height):
+    def __init__(self, scene, width, height, max_tile=MAX_TILE):
         self.scene, self.width, self.height = scene, width, height
+        self.max_tile = int(max_tile)         # the largest light window (a map's tiles)
         prefsize(width, height)
         self.eye_win = winopen("study eye")
         RGBmode()
@@ -52,6 +53,14 @@ class Stage:
         self._define_lighting()
         self.lists = {}
         self.light_windows = {}
+
+    def close(self):
+        """Close the stage's windows and delete its display lists."""
+        for n in self.lists.values():
+            delobj(n)
+        for gid in [self.eye_win, *self.light_windows.values()]:
+            winclose(gid)
+        self.lists, self.light_windows = {}, {}
 
     # -- lighting ---------------------------------------------------------
     def _define_lighting(self):
@@ -193,11 +202,3 @@ def draw_polygons(polys):
         for v in poly:
             v3f(v)
         endpolygon()
-
-
-def light_ortho(box, i, j, tiles):
-    """ortho() of tile (i, j) of a tiles x tiles split of the light box."""
-    l, r, b, t, n, f = box
-    dx, dy = (r - l) / tiles, (t - b) / tiles
-    ortho(l + i * dx, l + (i + 1) * dx, b + j * dy, b + (j + 1) * dy, n, f)
-

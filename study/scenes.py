@@ -232,6 +232,18 @@ def vogel_disc(n):
     return np.stack([r * np.cos(th), r * np.sin(th)], axis=1)
 
 
+def jittered_disc(n, seed):
+    """The vogel_disc spiral jittered from ``seed``: turned by a random
+    angle, each point at a random radius within its ring (r^2 uniform in
+    [k/n, (k+1)/n)): n points stratified over the disc, a different set
+    for every seed."""
+    rng = np.random.default_rng(seed)
+    k = np.arange(n)
+    r = np.sqrt((k + rng.uniform(0.0, 1.0, n)) / n)
+    th = (k + 0.5) * math.pi * (3.0 - math.sqrt(5.0)) + rng.uniform(0.0, 2.0 * math.pi)
+    return np.stack([r * np.cos(th), r * np.sin(th)], axis=1)
+
+
 # ---------------------------------------------------------------------------
 SPHERE_CENTRES = [(-3.45, 0.0, 0.6), (-1.15, 0.0, -0.6), (1.15, 0.0, 0.6), (3.45, 0.0, -0.6)]
 
@@ -282,3 +294,133 @@ SCENES = {"A": scene_a, "B": scene_b}
 
 def get(name):
     return SCENES[name]()
+
+
+# ---------------------------------------------------------------------------
+# scene files (JSON; the format is documented in docs/shadow-study-at-scale.md)
+FORMAT = "vgx-study-scene 1"
+
+
+def _vec(d, key, n=3):
+    v = d[key]
+    if len(v) != n:
+        raise ValueError(f"{key}: {n} numbers expected, got {v!r}")
+    return tuple(float(c) for c in v)
+
+
+def _mesh_from(d):
+    """One entry of a scene file's ``meshes`` list."""
+    kind, name, mat = d["kind"], d.get("name", d["kind"]), d["material"]
+    if kind == "ground":
+        return ground(name, float(d["y"]), float(d["half"]), mat)
+    if kind == "sphere":
+        return sphere(name, _vec(d, "centre"), float(d["radius"]), int(d.get("slices", 32)),
+                      int(d.get("stacks", 16)), mat)
+    if kind == "torus":
+        return torus(name, _vec(d, "centre"), float(d["radius"]), float(d["tube"]),
+                     int(d.get("rings", 32)), int(d.get("sides", 12)), mat)
+    if kind == "prism":
+        return prism(name, _vec(d, "base"), float(d["radius"]), float(d["height"]),
+                     int(d.get("sides", 12)), mat)
+    if kind == "box":
+        rot = None
+        for axis, degrees in d.get("rotate", []):
+            r = rotation(axis, float(degrees))
+            rot = r if rot is None else rot @ r
+        return box(name, _vec(d, "half"), mat, _vec(d, "centre") if "centre" in d else (0, 0, 0),
+                   rot)
+    if kind == "triangles":
+        v = np.asarray(d["verts"], np.float64).reshape(-1, 3)
+        t = np.asarray(d["tris"], np.int64).reshape(-1, 3)
+        if len(t) and (t.min() < 0 or t.max() >= len(v)):
+            raise ValueError(f"mesh {name!r}: a triangle indexes a vertex that does not exist")
+        return Mesh(name, v, t, mat, casts=bool(d.get("casts", True)))
+    raise ValueError(f"mesh {name!r}: unknown kind {kind!r} (ground, sphere, torus, prism, "
+                     f"box, triangles)")
+
+
+def from_dict(d, default_name="S"):
+    """A Scene from the dict of a scene file; ValueError naming what is wrong."""
+    if d.get("format", FORMAT) != FORMAT:
+        raise ValueError(f"scene format {d.get('format')!r}: {FORMAT!r} expected")
+    try:
+        mats = {k: (_vec(m, "ambient"), _vec(m, "diffuse")) for k, m in d["materials"].items()}
+        meshes = [_mesh_from(m) for m in d["meshes"]]
+        light = d["light"]
+        if "direction" in light:
+            direction = np.array([*_vec(light, "direction"), 0.0])
+        else:
+            direction = light_from(float(light["azimuth_left"]), float(light["elevation"]))
+        v = d["view"]
+        view = View(_vec(v, "eye"), _vec(v, "ref"), int(v["fovy"]), float(v["near"]),
+                    float(v["far"]))
+        scene = Scene(name=str(d.get("name", default_name)), title=str(d.get("title", "")),
+                      meshes=meshes, materials=mats, model_ambient=float(d["model_ambient"]),
+                      light=direction,
+                      light_radius=_light_radius(d),
+                      view=view, ground_y=float(d["ground_y"]), notes=str(d.get("notes", "")))
+    except KeyError as e:
+        raise ValueError(f"scene file: {e.args[0]!r} missing") from None
+    for m in scene.meshes:
+        if m.material not in mats:
+            raise ValueError(f"mesh {m.name!r}: material {m.material!r} is not in materials")
+        if m.casts and not m.closed:
+            raise ValueError(f"mesh {m.name!r} casts shadows but is not closed (every edge "
+                             f"must bound exactly two triangles; give an open mesh "
+                             f"\"casts\": false)")
+    if not any(m.casts for m in scene.meshes):
+        raise ValueError("scene file: no mesh casts a shadow")
+    if np.linalg.norm(scene.light[:3]) == 0.0:
+        raise ValueError("scene file: the light direction is zero")
+    return scene
+
+
+def _light_radius(d):
+    """``light_radius`` (the disc's radius at unit distance) or
+    ``light_radius_degrees`` (its angular radius); 0: a point light only."""
+    if "light_radius" in d:
+        return float(d["light_radius"])
+    return math.tan(math.radians(float(d.get("light_radius_degrees", 0.0))))
+
+
+def to_dict(scene):
+    """A scene file dict of any Scene (every mesh as ``triangles``)."""
+    return {"format": FORMAT, "name": scene.name, "title": scene.title, "notes": scene.notes,
+            "materials": {k: {"ambient": list(a), "diffuse": list(dif)}
+                          for k, (a, dif) in scene.materials.items()},
+            "model_ambient": scene.model_ambient,
+            "light": {"direction": [float(c) for c in scene.light[:3]]},
+            "light_radius": float(scene.light_radius),
+            "view": {"eye": list(scene.view.eye), "ref": list(scene.view.ref),
+                     "fovy": scene.view.fovy, "near": scene.view.near, "far": scene.view.far},
+            "ground_y": scene.ground_y,
+            "meshes": [{"kind": "triangles", "name": m.name, "material": m.material,
+                        "casts": m.casts, "verts": m.verts.tolist(), "tris": m.tris.tolist()}
+                       for m in scene.meshes]}
+
+
+def spec_of(name):
+    """What a worker needs to build a scene: a built-in name (``A``, ``B``)
+    or the parsed contents of a scene file (checked here, on the client)."""
+    if name in SCENES:
+        return {"builtin": name}
+    import json
+    from pathlib import Path
+    p = Path(name)
+    try:
+        d = json.loads(p.read_text())
+    except OSError as e:
+        raise ValueError(f"scene {name!r}: not a built-in scene ({', '.join(SCENES)}) and "
+                         f"not a readable file ({e.strerror})") from None
+    except json.JSONDecodeError as e:
+        raise ValueError(f"scene file {name}: not JSON ({e})") from None
+    d.setdefault("name", p.stem)
+    from_dict(d)
+    return d
+
+
+def build(spec):
+    """The Scene of a spec_of() result."""
+    if "builtin" in spec:
+        return get(spec["builtin"])
+    return from_dict(spec)
