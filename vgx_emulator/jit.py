@@ -1,19 +1,49 @@
-"""The single njit alias of the project, with the flags of :mod:`config`.
+"""The project's numba entry points, with the flags of :mod:`config`.
 
-Every kernel is compiled through :func:`njit` (serial) or :func:`pnjit`
-(``parallel=True``, when enabled).  ``NUMBA_DISABLE_JIT=1`` runs the kernels
-as plain Python for coverage and debugging.
+* :func:`njit`: a self-contained kernel (serial), cached on disk by numba
+  against its own file; :func:`pnjit` the same with ``parallel=True``.
+* :func:`kernel`: a kernel that inlines helpers of other files, cached on
+  disk against the source of every such file (``KERNEL_SOURCE_HASH``) and,
+  for a kernel variant, its raster key (``kernel(variant=key)``).
+* :func:`helper` and :func:`inline`: the small functions kernels inline
+  (never cached on their own).
+
+``NUMBA_DISABLE_JIT=1`` runs the kernels as plain Python for coverage and
+debugging.
 """
-import types as types_module
+import hashlib
+import sys
+from pathlib import Path
 
 import numba
 import numpy as np
-from numba.core import types
+from numba.core import caching, types
 from numba.extending import intrinsic, overload
 
 from . import config
 
 _opts = dict(config.JIT_OPTIONS)
+_PKG = Path(__file__).resolve().parent
+
+
+def _skip_blas_probe():
+    """numba's first compile or cache load of a process imports
+    numba.np.arraymath, which probes for BLAS by importing scipy.linalg
+    (0.3-0.6 s of a 0.8 s warm start).  No kernel of the emulator uses
+    numba's linear algebra, so the module is imported here with scipy
+    hidden: numba then records that it has no BLAS, and scipy stays
+    importable for everything else."""
+    if "scipy" in sys.modules or "numba.np.arraymath" in sys.modules:
+        return
+    sys.modules["scipy"] = None
+    try:
+        import numba.np.arraymath  # noqa: F401
+    finally:
+        if sys.modules.get("scipy", 0) is None:
+            del sys.modules["scipy"]
+
+
+_skip_blas_probe()
 
 
 def _tolerate_damaged_cache():
@@ -51,22 +81,71 @@ _tolerate_damaged_cache()
 
 
 def njit(fn=None, **extra):
-    """numba.njit with the project's options (cache on, fastmath off)."""
+    """numba.njit with the project's options (cache on, fastmath off), for a
+    kernel that calls no helper of another file."""
     opts = dict(_opts, **extra)
     if fn is None:
         return lambda f: numba.njit(**opts)(f)
     return numba.njit(**opts)(fn)
 
 
+#: the files whose source every kernel of :func:`kernel` may inline
+KERNEL_SOURCES = ("scan/*.py", "raster/*.py", "config.py", "jit.py", "framebuffer/zmax.py")
+
+
+def _source_hash():
+    h = hashlib.sha1()
+    for pattern in KERNEL_SOURCES:
+        for f in sorted(_PKG.glob(pattern)):
+            h.update(f.read_bytes())
+    return h.hexdigest()[:16]
+
+
+KERNEL_SOURCE_HASH = _source_hash()
+
+
+class _KeyedCache(caching.FunctionCache):
+    """numba's disk cache of one kernel, its entries keyed on a tag (the
+    kernel sources' hash and the variant) instead of the closure's cells.
+    numba keys a closure on its pickled cells, and a cell holding a
+    dispatcher (a variant's per-fragment stages) pickles with an id drawn
+    anew in every process: such a kernel was compiled again by every
+    process.  The tag names everything the cells hold (they are made from
+    the variant's key and the hashed sources)."""
+
+    def __init__(self, py_func, tag):
+        self._tag = tag
+        super().__init__(py_func)
+
+    def _index_key(self, sig, codegen):
+        code = hashlib.sha256(self._py_func.__code__.co_code).hexdigest()
+        return (sig, codegen.magic_tuple(), code, self._tag)
+
+
+def kernel(fn=None, *, variant=()):
+    """A kernel that inlines helpers (:func:`helper`, :func:`inline`) of other
+    files: :func:`njit`, with its disk cache keyed on KERNEL_SOURCE_HASH, so
+    that an edit of any helper compiles it again (numba keys a function's
+    cache on its own file only), and on ``variant`` (a kernel factory's
+    RasterKey: each variant has its own cache entries whatever its closure
+    holds).  ``kernel(f)``, ``@kernel`` or ``@kernel(variant=key)``."""
+    if fn is None:
+        return lambda f: kernel(f, variant=variant)
+    disp = numba.njit(**_opts)(fn)
+    if _opts.get("cache") and isinstance(disp, numba.core.registry.CPUDispatcher):
+        disp._cache = _KeyedCache(fn, KERNEL_SOURCE_HASH + repr(tuple(variant)))
+    return disp
+
+
 def helper(fn):
     """A small function inlined into kernels.  Not cached on its own: numba's
     cache of a function is keyed on its own file only, so a cached helper
     would keep old code inside kernels after an edit.  Kernels that use
-    helpers are built by factories whose closure holds KERNEL_SOURCE_HASH
-    (raster/variants.py), which keys their cache on every helper's source.
-    Helpers are called from compiled code only, so they are compiled without
-    the CPython and C wrappers (each helper's compile costs about 40 % less;
-    the cold start compiles some twenty of them)."""
+    helpers are compiled through :func:`kernel`, whose cache is keyed on
+    every helper's source.  Helpers are called from compiled code only, so
+    they are compiled without the CPython and C wrappers (each helper's
+    compile costs about 40 % less; the cold start compiles some twenty of
+    them)."""
     opts = dict(_opts, cache=False, no_cpython_wrapper=True, no_cfunc_wrapper=True)
     return numba.njit(**opts)(fn)
 
@@ -141,17 +220,3 @@ def _add32_impl(a, b):
 def _sra32_impl(a, n):
     return lambda a, n: _sra32(a, n)
 
-
-def bind_globals(fn, **names):
-    """``fn`` with ``names`` added to its globals, for a kernel factory to
-    hand its kernel the dispatchers made for its variant (the per-fragment
-    stages).  Not through the closure: numba's disk cache keys a closure on
-    the pickled contents of its cells, and a dispatcher pickles with an id
-    drawn anew in every process, so such a kernel would be compiled again by
-    every process.  The names must be determined by the closure's other
-    cells (the variant's flags), which the cache key does hold."""
-    f = types_module.FunctionType(fn.__code__, dict(fn.__globals__, **names), fn.__name__,
-                                  fn.__defaults__, fn.__closure__)
-    f.__qualname__ = fn.__qualname__
-    f.__doc__ = fn.__doc__
-    return f

@@ -1,4 +1,4 @@
-"""blendfunction(3G) and logicop(3G) on packed 0xAABBGGRR words (reference 7).
+"""blendfunction(3G) and logicop(3G) on packed 0xAABBGGRR words (docs/semantics.md §7).
 
 Blend, per component (0..255 scaled to 0..1, 0 and 255 exact)::
 
@@ -26,16 +26,21 @@ replaces blending (left open by logicop(3G): docs/semantics.md §7).
 """
 from ..jit import helper, inline
 
+BF_ZERO, BF_ONE, BF_DC, BF_MDC, BF_SA, BF_MSA, BF_DA, BF_MDA, BF_MIN_SA_MDA = range(9)
+BF_SC, BF_MSC = BF_DC, BF_MDC           # the same values as destination factors
+(LO_ZERO, LO_AND, LO_ANDR, LO_SRC, LO_ANDI, LO_DST, LO_XOR, LO_OR,
+ LO_NOR, LO_XNOR, LO_NDST, LO_ORR, LO_NSRC, LO_ORI, LO_NAND, LO_ONE) = range(16)
+
 #: Each factor as terms in units of 1/255: (constant, own component of the
 #: source, own component of the destination, source alpha, destination
 #: alpha, min flag).  factor*255 = k0 + k1 Cs + k2 Cd + k3 As + k4 Ad, or
 #: min(As, 255 - Ad) when the min flag is set.
-_SRC_TERMS = {0: (0, 0, 0, 0, 0, 0), 1: (255, 0, 0, 0, 0, 0),
-              2: (0, 0, 1, 0, 0, 0), 3: (255, 0, -1, 0, 0, 0),
-              4: (0, 0, 0, 1, 0, 0), 5: (255, 0, 0, -1, 0, 0),
-              6: (0, 0, 0, 0, 1, 0), 7: (255, 0, 0, 0, -1, 0),
-              8: (0, 0, 0, 0, 0, 1)}
-_DST_TERMS = {**_SRC_TERMS, 2: (0, 1, 0, 0, 0, 0), 3: (255, -1, 0, 0, 0, 0)}
+_SRC_TERMS = {BF_ZERO: (0, 0, 0, 0, 0, 0), BF_ONE: (255, 0, 0, 0, 0, 0),
+              BF_DC: (0, 0, 1, 0, 0, 0), BF_MDC: (255, 0, -1, 0, 0, 0),
+              BF_SA: (0, 0, 0, 1, 0, 0), BF_MSA: (255, 0, 0, -1, 0, 0),
+              BF_DA: (0, 0, 0, 0, 1, 0), BF_MDA: (255, 0, 0, 0, -1, 0),
+              BF_MIN_SA_MDA: (0, 0, 0, 0, 0, 1)}
+_DST_TERMS = {**_SRC_TERMS, BF_SC: (0, 1, 0, 0, 0, 0), BF_MSC: (255, -1, 0, 0, 0, 0)}
 
 
 def factor_terms(code, is_src):
@@ -51,7 +56,11 @@ def factor_terms(code, is_src):
 #: the generic kernel, which reads the terms from the parameter vector: the
 #: number of compiled variants stays small whatever a program (or the test
 #: suite, which tries every pair) uses.
-FOLDED = {(1, 1), (4, 5), (1, 5), (2, 0), (0, 2)}
+FOLDED = {(BF_ONE, BF_ONE), (BF_SA, BF_MSA), (BF_ONE, BF_MSA), (BF_DC, BF_ZERO),
+          (BF_ZERO, BF_SC)}
+#: blendfunction(BF_ONE, BF_ZERO): the incoming colour replaces the stored one
+#: (the default; no blend stage)
+REPLACE = (BF_ONE, BF_ZERO)
 GENERIC = -1
 
 
@@ -67,7 +76,7 @@ def key_terms(code):
     """(source terms, destination terms) compiled into a kernel for a
     RasterKey ``blend`` field (placeholders for off and GENERIC)."""
     if code <= 0:
-        return factor_terms(1, True), factor_terms(0, False)
+        return factor_terms(BF_ONE, True), factor_terms(BF_ZERO, False)
     return factor_terms((code - 1) >> 4, True), factor_terms((code - 1) & 15, False)
 
 
@@ -100,35 +109,36 @@ def blend_words(ts, td, src, dst):
 
 @helper
 def logic_op(op, s, d):
-    if op == 0:
+    """logicop(3G) ``op`` of the incoming ``s`` and stored ``d``, on 32 bits."""
+    if op == LO_ZERO:
         r = 0
-    elif op == 1:
+    elif op == LO_AND:
         r = s & d
-    elif op == 2:
+    elif op == LO_ANDR:
         r = s & ~d
-    elif op == 3:
+    elif op == LO_SRC:
         r = s
-    elif op == 4:
+    elif op == LO_ANDI:
         r = ~s & d
-    elif op == 5:
+    elif op == LO_DST:
         r = d
-    elif op == 6:
+    elif op == LO_XOR:
         r = s ^ d
-    elif op == 7:
+    elif op == LO_OR:
         r = s | d
-    elif op == 8:
+    elif op == LO_NOR:
         r = ~(s | d)
-    elif op == 9:
+    elif op == LO_XNOR:
         r = ~(s ^ d)
-    elif op == 10:
+    elif op == LO_NDST:
         r = ~d
-    elif op == 11:
+    elif op == LO_ORR:
         r = s | ~d
-    elif op == 12:
+    elif op == LO_NSRC:
         r = ~s
-    elif op == 13:
+    elif op == LO_ORI:
         r = ~s | d
-    elif op == 14:
+    elif op == LO_NAND:
         r = ~(s & d)
     else:
         r = -1

@@ -13,6 +13,8 @@ import numpy as np
 from ..jit import helper
 
 ZF_NEVER, ZF_LESS, ZF_EQUAL, ZF_LEQUAL, ZF_GREATER, ZF_NOTEQUAL, ZF_GEQUAL, ZF_ALWAYS = range(8)
+#: afunction(3G) and stencil(3G) number their functions as zfunction(3G) does
+AF_ALWAYS = SF_ALWAYS = ZF_ALWAYS
 
 
 @helper

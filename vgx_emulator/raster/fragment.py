@@ -16,7 +16,8 @@ Order (docs/semantics.md §6 "Order of the pixel operations", §7, §8):
 ``planes`` is the tuple of banks kernels take, in this order:
 (colour target 0, colour target 1, z, stencil, pattern bits).  Absent banks
 are 1x1 dummies that the kernel variant never touches.  ``ip`` is the int64
-parameter vector whose slots are the P_* names below; kernels copy it once
+parameter vector whose slots are the P_* names below (filled by
+:func:`pack`, from the state by raster.variants.choose); kernels copy it once
 into a tuple of scalars (``params``) so that the per-pixel code reads
 registers, not memory that might alias the banks.  Which stages run is
 decided by the kernel's compile-time flags (raster/variants.py); their
@@ -40,36 +41,73 @@ from . import blend as _blend
 from . import depth
 from . import stencil as _stencil
 
-# slots of the integer parameter vector
-(P_SX0, P_SX1, P_SY0, P_SY1, P_ZFUNC, P_ZMASK, P_ZLO, P_ZHI,
- P_SFUNC, P_SREF, P_SMASK, P_SWMASK, P_SMAX,
- P_FX, P_FK, P_FA, P_PX, P_PK, P_PA, P_ZX, P_ZK, P_ZA,
- P_CMASK, P_AFUNC, P_AREF, P_LOGICOP,
- P_PATSIZE, P_ORGX, P_ORGY,
- P_BS0, P_BS1, P_BS2, P_BS3, P_BS4, P_BS5,
- P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5, P_ZMAX, P_PADSPAN) = range(43)
-NPARAMS = 43
-# P_F*, P_P*, P_Z*: the stencil fail, pass and zpass ops as stencil.op_terms
-# P_BS*, P_BD*: the blend factors as blend.factor_terms (read by the generic
-# blend kernel only)
-# P_ZMAX: 1 when the triangle walker may skip spans against the z maxima
-# (framebuffer/zmax.py)
-# P_PADSPAN: spans shorter than this run over whole vectors in the triangle
-# walker (config.PAD_SPAN; 0: none)
+# slots of the integer parameter vector (pack() fills them)
+(P_SX0, P_SX1, P_SY0, P_SY1,                 # scissor: viewport ∩ scrmask ∩ window
+ P_ZFUNC, P_ZMASK, P_ZLO, P_ZHI,             # zfunction, zwritemask (-1: all 24 bits), lsetdepth
+ P_SFUNC, P_SREF, P_SMASK, P_SWMASK, P_SMAX,  # stencil(3G), swritemask, 2**planes - 1
+ P_FX, P_FK, P_FA,                           # the stencil fail op as stencil.op_terms
+ P_PX, P_PK, P_PA,                           # ... the pass (z fails) op
+ P_ZX, P_ZK, P_ZA,                           # ... the zpass op
+ P_CMASK, P_AFUNC, P_AREF, P_LOGICOP,        # colour writemask, afunction, logicop
+ P_PATSIZE, P_ORGX, P_ORGY,                  # defpattern size, the window's screen origin
+ P_BS0, P_BS1, P_BS2, P_BS3, P_BS4, P_BS5,   # blend factors as blend.factor_terms (the
+ P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5,   # generic blend kernel reads them)
+ P_ZMAX,                                     # 1: spans may be skipped against the z maxima
+ P_PADSPAN,                                  # spans shorter than this run over whole vectors
+ NPARAMS) = range(44)
+#: the slots kernels read as int32 (params): the stencil arithmetic on the
+#: 8-bit planes then runs in 32-bit vector lanes
+STENCIL_SLOTS = range(P_SREF, P_ZA + 1)
+
+
+def pack(*, scissor, zfunc, zmask, zrange, stencil, cmask, afunction, logicop, blend,
+         pattern_size, origin, zmax=False, padspan=0):
+    """The parameter vector of a pass, each value in its slot.
+
+    ``scissor``: (x0, x1, y0, y1) inclusive; ``zmask``: the 24-bit
+    zwritemask; ``zrange``: (lo, hi) of the stored z; ``stencil``: (func,
+    ref, mask, writemask, max, fail terms, pass terms, zpass terms);
+    ``afunction``: (ref, func); ``blend``: (source terms, destination terms);
+    ``origin``: the window's screen origin, which patterns are aligned to."""
+    ip = np.zeros(NPARAMS, np.int64)
+    ip[P_SX0], ip[P_SX1], ip[P_SY0], ip[P_SY1] = scissor
+    ip[P_ZFUNC] = zfunc
+    ip[P_ZMASK] = -1 if zmask == 0xFFFFFF else zmask
+    ip[P_ZLO], ip[P_ZHI] = zrange
+    sfunc, sref, smask, swmask, smax, fail, zfail, zpass = stencil
+    ip[P_SFUNC], ip[P_SREF], ip[P_SMASK], ip[P_SWMASK], ip[P_SMAX] = \
+        sfunc, sref, smask, swmask, smax
+    ip[P_FX:P_FA + 1] = fail
+    ip[P_PX:P_PA + 1] = zfail
+    ip[P_ZX:P_ZA + 1] = zpass
+    ip[P_CMASK] = cmask
+    ip[P_AREF], ip[P_AFUNC] = afunction
+    ip[P_LOGICOP] = logicop
+    ip[P_BS0:P_BS5 + 1] = blend[0]
+    ip[P_BD0:P_BD5 + 1] = blend[1]
+    ip[P_PATSIZE] = pattern_size
+    ip[P_ORGX], ip[P_ORGY] = origin
+    ip[P_ZMAX] = zmax
+    ip[P_PADSPAN] = padspan
+    return ip
 
 
 @helper
 def params(ip):
-    """The parameter vector as a tuple of scalars (read once per kernel).
-    The stencil slots (P_SREF .. P_ZA) are int32, so that stencil
-    arithmetic on the 8-bit planes runs in 32-bit vector lanes."""
+    """The parameter vector as a tuple of scalars, in slot order (read once
+    per kernel); the STENCIL_SLOTS as int32."""
     i32 = np.int32
-    return (ip[0], ip[1], ip[2], ip[3], ip[4], ip[5], ip[6], ip[7], ip[8],
-            i32(ip[9]), i32(ip[10]), i32(ip[11]), i32(ip[12]), i32(ip[13]), i32(ip[14]),
-            i32(ip[15]), i32(ip[16]), i32(ip[17]), i32(ip[18]), i32(ip[19]), i32(ip[20]),
-            i32(ip[21]), ip[22], ip[23], ip[24], ip[25], ip[26], ip[27], ip[28],
-            ip[29], ip[30], ip[31], ip[32], ip[33], ip[34], ip[35], ip[36], ip[37], ip[38],
-            ip[39], ip[40], ip[41], ip[42])
+    return (ip[P_SX0], ip[P_SX1], ip[P_SY0], ip[P_SY1],
+            ip[P_ZFUNC], ip[P_ZMASK], ip[P_ZLO], ip[P_ZHI],
+            ip[P_SFUNC], i32(ip[P_SREF]), i32(ip[P_SMASK]), i32(ip[P_SWMASK]), i32(ip[P_SMAX]),
+            i32(ip[P_FX]), i32(ip[P_FK]), i32(ip[P_FA]),
+            i32(ip[P_PX]), i32(ip[P_PK]), i32(ip[P_PA]),
+            i32(ip[P_ZX]), i32(ip[P_ZK]), i32(ip[P_ZA]),
+            ip[P_CMASK], ip[P_AFUNC], ip[P_AREF], ip[P_LOGICOP],
+            ip[P_PATSIZE], ip[P_ORGX], ip[P_ORGY],
+            ip[P_BS0], ip[P_BS1], ip[P_BS2], ip[P_BS3], ip[P_BS4], ip[P_BS5],
+            ip[P_BD0], ip[P_BD1], ip[P_BD2], ip[P_BD3], ip[P_BD4], ip[P_BD5],
+            ip[P_ZMAX], ip[P_PADSPAN])
 
 
 @helper

@@ -11,30 +11,18 @@ a depth-only pass compiles to a loop with no colour work, a scene without a
 z-buffer never touches z memory, and the set of variants stays small (each
 field is a bool; only the combinations a program uses are compiled).
 
-``KERNEL_SOURCE_HASH`` hashes the source of every module a kernel inlines;
-it is a closure constant of each factory-built kernel, so numba's disk cache
-(keyed on closure values) is invalidated when any of them changes
+Every kernel variant is compiled through ``jit.kernel(variant=key)``: its disk
+cache is keyed on the key and on the source of every module it inlines
 (docs/architecture.md, Kernels).
 """
-import hashlib
 from collections import namedtuple
-from pathlib import Path
 
-_PKG = Path(__file__).resolve().parent.parent
+import numpy as np
 
-
-def _source_hash():
-    h = hashlib.sha1()
-    for sub in ("scan", "raster"):
-        for f in sorted((_PKG / sub).glob("*.py")):
-            h.update(f.read_bytes())
-    h.update((_PKG / "config.py").read_bytes())
-    h.update((_PKG / "jit.py").read_bytes())
-    h.update((_PKG / "framebuffer" / "zmax.py").read_bytes())
-    return h.hexdigest()[:16]
-
-
-KERNEL_SOURCE_HASH = _source_hash()
+from .. import config
+from ..framebuffer import layers
+from . import blend, depth, fragment
+from . import stencil as _stencil
 
 #: Fields of the raster key, in kernel-factory argument order.
 #: ``blend``: 0, or blend.key_code(sfactr, dfactr): a folded pair, or GENERIC.
@@ -46,10 +34,73 @@ RasterKey = namedtuple("RasterKey", "ztest zwrite color gouraud cmode twoside "
                                     "stencil blend logic atest pattern cmask texture dual")
 
 
-def cache_tag(*key):
-    """The closure constant that keys a kernel variant's disk cache: the
-    source hash and every field of its key.  numba keys a cached closure on
-    its cells, and a kernel whose body no longer names a flag (the stages
-    reach it through jit.bind_globals) would otherwise share its cache entry
-    with the variant that differs only in that flag."""
-    return KERNEL_SOURCE_HASH + repr(tuple(key))
+_DUMMY_C = np.zeros((1, 1), np.uint32)
+_DUMMY_Z = np.zeros((1, 1), np.int32)
+_DUMMY_S = np.zeros((1, 1), np.uint8)
+_SOLID = np.ones((1, 1), np.uint8)
+
+
+def choose(st, fb, targets, *, bits, scissor, origin, pattern=None, twoside=False):
+    """The kernel variant and parameter vector of a pass: ``(RasterKey, ip)``.
+
+    ``st``: the window's state (state.WindowState); ``fb``: its Framebuffer;
+    ``targets``: the colour banks drawing goes to (frontbuffer(3G),
+    backbuffer(3G), drawmode(3G), zdraw(3G)); ``bits``: the bits a colour
+    word may hold (0xFFFFFFFF in RGB mode, 2**planes - 1 in colour-map
+    mode); ``scissor``: viewport ∩ scrmask ∩ window; ``origin``: the
+    window's screen origin, which patterns align to; ``pattern``: (size,
+    bits) of the defpattern(3G) a filled primitive is drawn with, or None;
+    ``twoside``: the batch carries back colours (lmodel TWOSIDE).
+
+    A stage is in the key when the state *enables* it: zbuffer(3G) in the
+    normal framebuffer (the pop-up, overlay and underlay planes have no z
+    or stencil), stencil(3G) with a stencil bank, blendfunction(3G) other
+    than (BF_ONE, BF_ZERO) in RGB mode, logicop(3G) other than LO_SRC (it
+    replaces blending), afunction(3G) other than AF_ALWAYS, a pattern, a
+    writemask(3G)/wmpack(3G) that keeps some bits.  Its values (functions,
+    references, masks, factors) go to the parameter vector."""
+    normal = st.drawmode == layers.NORMALDRAW
+    ztest = st.zbuffer and normal
+    zmask = st.zwritemask & 0xFFFFFF
+    cmask = st.cmask & bits
+    color = len(targets) > 0 and cmask != 0
+    smax = (1 << fb.stencil_planes) - 1
+    stencil = 0
+    if st.stencil_on and fb.stencil is not None and normal:
+        # 1: the bank is only read (every op ST_KEEP, or swritemask 0)
+        keep = all(op == _stencil.ST_KEEP for op in st.stencil[3:6])
+        stencil = 1 if keep or st.swritemask & smax == 0 else 2
+    logic = color and st.logicop != blend.LO_SRC
+    key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=color,
+                    gouraud=st.gouraud or st.depthcue, cmode=not st.rgb, twoside=twoside,
+                    stencil=stencil,
+                    blend=blend.key_code(*st.blendfunc) if (
+                        color and st.rgb and not logic and st.blendfunc != blend.REPLACE) else 0,
+                    logic=logic, atest=st.rgb and st.afunc[1] != depth.AF_ALWAYS,
+                    pattern=pattern is not None,
+                    cmask=color and (cmask != bits or not normal),
+                    texture=False, dual=color and len(targets) >= 2)
+    ref, func, mask, sfail, spass, szpass = st.stencil
+    ref = min(ref, smax)         # stencil(3G): the reference is clamped to the planes
+    ops = tuple(_stencil.op_terms(op, ref, smax) for op in (sfail, spass, szpass))
+    near, far = st.depth_range
+    ip = fragment.pack(
+        scissor=scissor, zfunc=st.zfunc, zmask=zmask, zrange=(min(near, far), max(near, far)),
+        stencil=(func, ref, mask & smax, st.swritemask & smax, smax) + ops,
+        cmask=cmask, afunction=st.afunc, logicop=st.logicop,
+        blend=(blend.factor_terms(st.blendfunc[0], True),
+               blend.factor_terms(st.blendfunc[1], False)),
+        pattern_size=pattern[0] if pattern is not None else 1, origin=origin,
+        padspan=config.PAD_SPAN)
+    return key, ip
+
+
+def banks(key, fb, targets, pattern=None):
+    """The banks tuple kernels take (raster.fragment): the colour targets,
+    z, stencil and pattern bits, with 1 x 1 dummies for what ``key`` does
+    not use.  The z bank is made at its first use."""
+    return (targets[0] if targets else _DUMMY_C,
+            targets[1] if len(targets) > 1 else _DUMMY_C,
+            fb.ensure_z() if key.ztest else _DUMMY_Z,
+            fb.stencil if key.stencil else _DUMMY_S,
+            pattern[1] if pattern is not None else _SOLID)

@@ -18,10 +18,9 @@ the same per-fragment operations as triangles (:mod:`raster.fragment`).
 """
 import math
 
-from ..jit import bind_globals, njit
+from ..jit import kernel
 from ..raster import fragment
 from ..raster.blend import key_terms
-from ..raster.variants import cache_tag
 
 _kernels = {}
 
@@ -49,13 +48,14 @@ def _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, 
 
 def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                       stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
-                         logic, atest, pattern, cmask, texture, dual)
+    key = (ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend, logic, atest,
+           pattern, cmask, texture, dual)
     bterms = key_terms(blend)
+    frag = _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)
 
+    @kernel(variant=key)
     def draw_lines(P0, P1, FLAT, closed, planes, ip):
         """P0, P1: (S, 7) rows x, y, z, r, g, b, a; FLAT: (S, 4) colours."""
-        _ = src_hash
         bt = fragment.blend_terms(blend, bterms, fragment.params(ip))
         sx0 = ip[fragment.P_SX0]
         sx1 = ip[fragment.P_SX1]
@@ -107,22 +107,19 @@ def _make_line_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     a = FLAT[s, 3]
                 frag(bt, x, y, z, r, g, b, a, planes, ip)
 
-    # ``frag`` is a global of draw_lines (bind_globals), never a local here: a
-    # closure cell holding a dispatcher pickles differently in every process,
-    # and numba's disk cache would then never serve the kernel
-    return njit(bind_globals(draw_lines, frag=_fragment(ztest, zwrite, color, cmode, stencil,
-                                                      blend, logic, atest, cmask, dual)))
+    return draw_lines
 
 
 def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                        stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
-                         logic, atest, pattern, cmask, texture, dual)
+    key = (ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend, logic, atest,
+           pattern, cmask, texture, dual)
     bterms = key_terms(blend)
+    frag = _fragment(ztest, zwrite, color, cmode, stencil, blend, logic, atest, cmask, dual)
 
+    @kernel(variant=key)
     def draw_points(P, planes, ip):
         """P: (N, 7) rows x, y, z, r, g, b, a."""
-        _ = src_hash
         bt = fragment.blend_terms(blend, bterms, fragment.params(ip))
         for i in range(P.shape[0]):
             x = int(math.floor(P[i, 0] + 0.5))
@@ -133,9 +130,5 @@ def _make_point_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 continue
             frag(bt, x, y, P[i, 2], P[i, 3], P[i, 4], P[i, 5], P[i, 6], planes, ip)
 
-    # ``frag`` is a global of draw_points (bind_globals), never a local here: a
-    # closure cell holding a dispatcher pickles differently in every process,
-    # and numba's disk cache would then never serve the kernel
-    return njit(bind_globals(draw_points, frag=_fragment(ztest, zwrite, color, cmode, stencil,
-                                                      blend, logic, atest, cmask, dual)))
+    return draw_points
 

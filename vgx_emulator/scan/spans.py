@@ -5,11 +5,10 @@ import math
 
 import numpy as np
 
-from ..jit import bind_globals, njit
+from ..jit import kernel, njit
 from ..raster import fragment as F
 from ..raster.blend import key_terms
 from ..raster.depth import masked_write
-from ..raster.variants import KERNEL_SOURCE_HASH, cache_tag
 
 
 @njit
@@ -26,35 +25,24 @@ def fill(plane, x0, x1, y0, y1, value, mask):
             row[u] = (row[u] & keep) | (value & mask)
 
 
-def _make_fill_z():
-    """fill_z, with KERNEL_SOURCE_HASH as a closure constant so that its disk
-    cache follows the masked_write helper it inlines (jit.helper)."""
-    src_hash = KERNEL_SOURCE_HASH
-
-    @njit
-    def fill_z(plane, x0, x1, y0, y1, value, mask):
-        """z bank fill under zwritemask (24-bit value, sign-extended storage).
-        A zero mask touches nothing; a full one stores without reading."""
-        _ = src_hash
-        if mask & 0xFFFFFF == 0:
-            return
-        if mask & 0xFFFFFF == 0xFFFFFF:
-            v = masked_write(np.int64(0), value, mask)
-            for y in range(y0, y1 + 1):
-                row = plane[y]
-                for x in range(x0, x1 + 1):
-                    row[np.uint64(x)] = v
-            return
+@kernel
+def fill_z(plane, x0, x1, y0, y1, value, mask):
+    """z bank fill under zwritemask (24-bit value, sign-extended storage).
+    A zero mask touches nothing; a full one stores without reading."""
+    if mask & 0xFFFFFF == 0:
+        return
+    if mask & 0xFFFFFF == 0xFFFFFF:
+        v = masked_write(np.int64(0), value, mask)
         for y in range(y0, y1 + 1):
             row = plane[y]
             for x in range(x0, x1 + 1):
-                u = np.uint64(x)
-                row[u] = masked_write(np.int64(row[u]), value, mask)
-
-    return fill_z
-
-
-fill_z = _make_fill_z()
+                row[np.uint64(x)] = v
+        return
+    for y in range(y0, y1 + 1):
+        row = plane[y]
+        for x in range(x0, x1 + 1):
+            u = np.uint64(x)
+            row[u] = masked_write(np.int64(row[u]), value, mask)
 
 
 @njit
@@ -82,13 +70,15 @@ def pixel_kernel(key):
 
 def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                        stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
-                         logic, atest, pattern, cmask, texture, dual)
+    key = (ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend, logic, atest,
+           pattern, cmask, texture, dual)
     bterms = key_terms(blend)
+    frag = F.fragment_function(False, False, color, cmode, False, blend, logic, atest, False,
+                               cmask, dual)
 
+    @kernel(variant=key)
     def write_pixels(words, x1, y1, xzoom, yzoom, planes, ip):
         """words: (h, w) source rows, row 0 at the bottom; lower-left at (x1, y1)."""
-        _ = src_hash
         bt = F.blend_terms(blend, bterms, F.params(ip))
         h, w = words.shape
         xe = x1 + int(math.ceil(w * xzoom)) - 1
@@ -114,8 +104,4 @@ def _make_pixel_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     a = float((v >> 24) & 0xFF)
                 frag(bt, x, y, 0.0, r, g, b, a, planes, ip)
 
-    # ``frag`` is a global of write_pixels (bind_globals), never a local here:
-    # as a closure cell its dispatcher would pickle differently in every
-    # process and numba's disk cache would never serve the kernel
-    return njit(bind_globals(write_pixels, frag=F.fragment_function(
-        False, False, color, cmode, False, blend, logic, atest, False, cmask, dual)))
+    return write_pixels

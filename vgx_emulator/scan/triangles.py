@@ -58,17 +58,14 @@ import numba
 import numpy as np
 
 from .. import config
-from ..jit import add32, bind_globals, helper, njit, sra32
+from ..jit import add32, helper, kernel, sra32
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.blend import key_terms
 from ..framebuffer.zmax import SEGMENT_SHIFT as ZSEG_SHIFT
-from ..raster.variants import KERNEL_SOURCE_HASH, cache_tag
 from .fixed import SHIFT, edge_coefficients, owns_edge
 
-#: fractional bits of the z and colour DDAs along a span
-ZFRAC = 30
-CFRAC = 16
+ZFRAC, CFRAC = config.ZFRAC, config.CFRAC
 #: their fixed-point ones as floats: the scale to_fixed and plane_fixed
 #: take (a float, so that numba compiles each helper once, not once per
 #: literal number of bits)
@@ -79,14 +76,9 @@ CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
 
 
 def _make_setup():
-    """setup_triangles' kernel, compiled with KERNEL_SOURCE_HASH as a closure constant
-    so that its disk cache follows fixed.py as well (jit.helper)."""
-    src_hash = KERNEL_SOURCE_HASH
-
-    @njit
+    @kernel
     def setup_kernel(X, Y, tris, cull, sx0, sx1, sy0, sy1, out):
         """Fill ``out`` (setup_triangles) for the triangles."""
-        _ = src_hash
         edges, verts, box, inv_area, back, valid = out
         for i in range(tris.shape[0]):
             a = tris[i, 0]
@@ -222,17 +214,8 @@ def to_fixed(v, one):
     return np.int64(math.floor(f + 0.5))
 
 
-#: pixels per vector of the span loop (8 int32 lanes of AVX2): spans
-#: shorter than config.PAD_SPAN are padded to a multiple of it, and to at
-#: least two (the vectorised loop runs only from 16 iterations: LLVM's
-#: threshold for a loop with run-time checks; measured on the Heidmann
-#: colour passes, 34.6 -> 31.1 ms on one thread)
-VEC = 8
-
-#: plane_fixed's bound: |start| + |sx| * width + |sy| * height of a
-#: triangle's box below 2**62 keeps every value of the plane in the box
-#: (``start + sy * dy + sx * dx`` and the DDA along a span) inside int64
-PLANE_LIMIT = float(1 << 62)
+VEC = config.VEC
+PLANE_LIMIT = config.PLANE_LIMIT
 
 
 @helper
@@ -269,14 +252,10 @@ def band_starts(sy0, sy1):
 
 _pool = None
 
-#: shares of the band list per thread: a thread takes the next share when it
-#: finishes one, so one whose bands hold less work takes more of them
-SHARES_PER_THREAD = 4
-
 
 def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     """Run a compiled walker over every band: the band_starts list cut into
-    SHARES_PER_THREAD shares per thread, which ``numba.get_num_threads()``
+    config.SHARES_PER_THREAD shares per thread, which ``numba.get_num_threads()``
     threads (this one and the others of a thread pool; the walker releases
     the GIL) take in turn until none is left; small batches run on this
     thread alone.  Each band is drawn by one
@@ -302,7 +281,7 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
         return
     if _pool is None or _pool._max_workers < n - 1:
         _pool = ThreadPoolExecutor(max_workers=max(n - 1, 1), thread_name_prefix="vgx-band")
-    shares = np.array_split(bands, min(n * SHARES_PER_THREAD, len(bands)))
+    shares = np.array_split(bands, min(n * config.SHARES_PER_THREAD, len(bands)))
     taken = itertools.count()       # next() is atomic under the GIL
 
     def worker():
@@ -319,8 +298,9 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
 
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                           stencil, blend, logic, atest, pattern, cmask, texture, dual):
-    src_hash = cache_tag(ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend,
-                         logic, atest, pattern, cmask, texture, dual)   # keys the disk cache
+    key = (ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend, logic, atest,
+           pattern, cmask, texture, dual)
+    stages = fragment.stage_function(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode)
     bterms = key_terms(blend)          # the blend factors of a folded pair
     band_rows = config.BAND_ROWS
     zhalf = 1 << (ZFRAC - 1)
@@ -329,13 +309,13 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     cmax = 0xFFF if cmode else 255
     pad = not texture
 
+    @kernel(variant=key)
     def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
         """Rows of every triangle in the bands starting at rows ``bands``
         (run_bands), in submission order."""
         edges, verts, box, inv_area, back, valid = setup
         texels, tinfo, tsel, tp = tex
         cb0, cb1, zb, sb, pat = planes
-        _ = src_hash
         prm = fragment.params(ip)
         bt = fragment.blend_terms(blend, bterms, prm)
         npat = prm[fragment.P_PATSIZE]
@@ -605,6 +585,4 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                             if dual:
                                 cr1[u] = n1
 
-    # the variant's stages as a global of the walker (jit.bind_globals)
-    return njit(bind_globals(walk, stages=fragment.stage_function(
-        ztest, zwrite, stencil, blend, logic, atest, cmask, cmode)))
+    return walk
