@@ -8,6 +8,9 @@ batch is flushed.  Initial values are those of a freshly opened window
 from .framebuffer import ZMAX, ZMIN
 from .geometry.fog import FogState
 from .geometry.stack import MatrixState
+from .raster.blend import LO_SRC, REPLACE
+from .raster.depth import AF_ALWAYS, SF_ALWAYS, ZF_LEQUAL
+from .raster.stencil import ST_KEEP
 
 #: scrbox(3G) after SB_RESET: left/bottom greater than right/top
 SCRBOX_EMPTY = (1 << 30, -(1 << 30), 1 << 30, -(1 << 30))
@@ -52,7 +55,7 @@ class WindowState:
         self.mat_override = {}         # material properties set through lmcolor
         # raster subsystem
         self.zbuffer = False
-        self.zfunc = 3                 # ZF_LEQUAL
+        self.zfunc = ZF_LEQUAL
         self.zwritemask = 0xFFFFFF
         self.zdraw = False                         # zdraw(3G): colour into z
         self.zsource = 0                           # zsource(3G): ZSRC_DEPTH
@@ -60,13 +63,13 @@ class WindowState:
         self.back_enabled = False
         # stencil(3G): enable, ref, func, mask, fail, pass, zpass; swritemask
         self.stencil_on = False
-        self.stencil = (0, 7, 0xFF, 0, 0, 0)      # ref, SF_ALWAYS, mask, KEEP x3
+        self.stencil = (0, SF_ALWAYS, 0xFF, ST_KEEP, ST_KEEP, ST_KEEP)   # ref, func, mask, ops
         self.swritemask = 0xFF
         # colour writemask: wmpack/RGBwritemask (RGB) or writemask (cmode)
         self.cmask = 0xFFFFFFFF
-        self.blendfunc = (1, 0)                    # BF_ONE, BF_ZERO (replace)
-        self.afunc = (0, 7)                        # ref, AF_ALWAYS
-        self.logicop = 3                           # LO_SRC
+        self.blendfunc = REPLACE                   # (BF_ONE, BF_ZERO)
+        self.afunc = (0, AF_ALWAYS)                # ref, function
+        self.logicop = LO_SRC
         self.dither = True
         self.pattern = 0                           # setpattern index; 0 = solid
         self.zoom = (1.0, 1.0)                     # rectzoom
