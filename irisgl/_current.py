@@ -30,8 +30,9 @@ IMMEDIATE = set()
 def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""):
     """Wrap an IRIS GL call: in lenient mode a GLError is printed as
     ``GL: <message>`` and the call ignored; calls not allowed inside bgn/end
-    raise there.  ``immediate`` calls are never recorded into an object;
-    ``status``/``why`` classify the call for docs/api.md (see ``API``)."""
+    raise there; numpy floating-point warnings are off while it runs.
+    ``immediate`` calls are never recorded into an object; ``status``/``why``
+    classify the call for docs/api.md (see ``API``)."""
     def wrap(f):
         name = f.__name__
         API[name] = (status, why)
@@ -51,9 +52,12 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
                         fail(name, f"not allowed inside bgn{_kind(w)}",
                              "only v*, n*, c*, color, cpack, RGBcolor, t*, lmdef, "
                              "lmbind, lmcolor and swaptmesh may appear there")
-                if machine.call_hook is not None:    # trace.py: names the passes' calls
-                    return machine.call_hook(name, f, args)
-                return f(*args)
+                # non-finite results are the machine's to report (a VGXWarning
+                # naming the call); numpy's own warnings never reach the user
+                with np.errstate(all="ignore"):
+                    if machine.call_hook is not None:    # trace.py: names the passes' calls
+                        return machine.call_hook(name, f, args)
+                    return f(*args)
             except GLError as e:
                 if is_lenient():
                     report(e)
@@ -70,6 +74,14 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
         call.__wrapped__ = f
         return call
     return wrap(fn) if fn is not None else wrap
+
+
+def raise_or_report(e):
+    """A GLError from a call's fast path: raised, or printed in lenient mode."""
+    if is_lenient():
+        report(e)
+        return None
+    raise e
 
 
 def _arity_error(name, f, args):
@@ -111,8 +123,7 @@ def _record(name, fn, args):
 
 
 def _kind(w):
-    from vgx_emulator.machine import KIND_NAMES
-    return KIND_NAMES[w.batch.open[0]]
+    return w.batch.open[1][3:]
 
 
 def win(call):
@@ -178,6 +189,16 @@ def token(call, x, allowed, what="token"):
 
 def boolean(call, x):
     return bool(integer(call, x, "Boolean"))
+
+
+def words(a, mask):
+    """An integer array reduced to the bits of ``mask``, as C converts a
+    value to an ``unsigned long``/``short`` array element (Decision 13);
+    an object array of Python integers of any size (2**70) included.
+    Raises TypeError/ValueError for elements that are not integers."""
+    if a.dtype == object:
+        return np.array([int(v) & mask for v in a.reshape(-1)], np.int64).reshape(a.shape)
+    return a.astype(np.int64) & mask
 
 
 def ulong(x):

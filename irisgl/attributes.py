@@ -46,4 +46,4 @@ def popattributes():
     saved = w.attrib_stack.pop()
     for n, v in saved.items():
         setattr(w.st, n, v)
-    w.batch.dirty = True            # the next vertex takes the restored colour
+    machine.attributes_changed(w)   # the next vertex takes the restored colour

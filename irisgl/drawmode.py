@@ -22,7 +22,8 @@ def _switch(w, mode):
         return
     machine.state_change(w)            # what was issued is drawn where it was aimed
     L.switch(w.st, mode)
-    w.batch.dirty = True               # the next vertex takes this framebuffer's colour
+    machine.attributes_changed(w)      # the next vertex takes this framebuffer's colour
+    machine.rebind()                   # RGB or colour-map calls, as this framebuffer takes
 
 
 @glcall(immediate=True)

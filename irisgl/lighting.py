@@ -103,7 +103,7 @@ def lmcolor(mode):
     if m != st.lmcolor:
         st.colour_since_bind = False
     st.lmcolor = m
-    w.batch.dirty = True
+    machine.attributes_changed(w)
 
 
 @glcall

@@ -9,11 +9,13 @@ alpha to the maximum.
 """
 import math
 
-from vgx_emulator.errors import fail
+from vgx_emulator.errors import GLError, fail
 from vgx_emulator.geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
+from vgx_emulator.geometry.batch import EV_BYTE, EV_CPACK, EV_NORMAL, EV_UNIT
 
 from . import constants as K
-from ._current import boolean, glcall, integer, machine, num, token, ulong, vec, win
+from ._current import (boolean, glcall, integer, machine, num, raise_or_report, token, ulong,
+                       vec, win)
 
 __all__ = []
 
@@ -23,75 +25,193 @@ def _export(f):
     return f
 
 
-# -- bgn / end ---------------------------------------------------------------
-def _pair(kind, bgn_name, end_name):
-    def bgn():
-        machine.begin(win(bgn_name), kind, bgn_name)
+# -- the per-vertex calls ------------------------------------------------------
+# A ported program calls v*/n3f/c*/t* once per vertex, so their cost is the
+# program's cost.  Each call below is a plain function that does the common
+# case in a few bytecodes: unpack and convert its numbers (float() refuses
+# anything that is not one), then append them with one C call to the lists
+# the machine's handles point at (VGX.rebind: ``V`` extends the positions
+# inside bgn/end, ``E``/``EC`` the attribute events; geometry/batch.py says
+# what the flush makes of them).  Anything else (no window, outside bgn/end,
+# an object being recorded, a longer or odd array, a wrong type or number of
+# arguments, colour-map mode) raises before anything was appended, and the
+# call takes its checked path: the glcall-wrapped validator below, which
+# records it, or raises the GLError (reported in lenient mode).
 
-    def end():
-        machine.end(win(end_name), kind, end_name)
-    bgn.__name__, end.__name__ = bgn_name, end_name
-    bgn.__doc__ = f"{bgn_name}(3G): start a {end_name[3:]} primitive."
-    end.__doc__ = f"{end_name}(3G): finish the {end_name[3:]} primitive."
-    # bgn is not allowed inside another pair; end must be callable there
-    return _export(glcall(bgn)), _export(glcall(end, inside=True))
-
-
-bgnpolygon, endpolygon = _pair(POLYGON, "bgnpolygon", "endpolygon")
-bgntmesh, endtmesh = _pair(TMESH, "bgntmesh", "endtmesh")
-bgnqstrip, endqstrip = _pair(QSTRIP, "bgnqstrip", "endqstrip")
-bgnline, endline = _pair(LINE, "bgnline", "endline")
-bgnclosedline, endclosedline = _pair(CLOSEDLINE, "bgnclosedline", "endclosedline")
-bgnpoint, endpoint = _pair(POINT, "bgnpoint", "endpoint")
+_NO = object()          # "argument not given": the checked path reports the arity
 
 
-@_export
-@glcall(inside=True)
-def swaptmesh():
-    """swaptmesh(3G): toggle the tmesh replace pointer (no triangle)."""
-    machine.swaptmesh(win("swaptmesh"))
+def _checked_call(name, args, more):
+    """Run the checked version of ``name`` with the arguments as given."""
+    _CHECKED[name](*([] if args[0] is _NO else list(args)), *more)
 
 
-# -- vertices ----------------------------------------------------------------
-def _vertex_calls():
-    made = {}
-    for n in (2, 3, 4):
-        for t in "sifd":
-            name = f"v{n}{t}"
-
-            def make(name=name, n=n):
-                def v(a):
-                    w = machine.current
-                    if w is None:
-                        fail(name, "no window is open", "call winopen first")
-                    p = vec(name, a, n, "vertex")
-                    if n == 2:
-                        machine.vertex(w, p[0], p[1], 0.0, 1.0, name)
-                    elif n == 3:
-                        machine.vertex(w, p[0], p[1], p[2], 1.0, name)
-                    else:
-                        machine.vertex(w, p[0], p[1], p[2], p[3], name)
-                v.__name__ = name
-                v.__doc__ = f"{name}(3G): a vertex of {n} coordinates."
-                return glcall(v, inside=True)
-            made[name] = _export(make())
-    return made
+def _vertex_checker(name, n):
+    def checked(v):
+        w = win(name)
+        p = vec(name, v, n, "vertex")
+        if n == 2:
+            machine.vertex(w, p[0], p[1], 0.0, 1.0, name)
+        elif n == 3:
+            machine.vertex(w, p[0], p[1], p[2], 1.0, name)
+        else:
+            machine.vertex(w, p[0], p[1], p[2], p[3], name)
+    checked.__name__ = checked.__qualname__ = name
+    return glcall(checked, inside=True)
 
 
-globals().update(_vertex_calls())
+_CHECKED = {f"v{n}{t}": _vertex_checker(f"v{n}{t}", n) for n in (2, 3, 4) for t in "sifd"}
 
 
 @_export
-@glcall(inside=True)
-def n3f(n):
-    """n3f(3G): the current normal for the following vertices."""
+def v2s(v=_NO, *more):
+    """v2s(3G): a vertex of 2 shorts (z = 0, w = 1), inside bgn*/end*."""
+    try:
+        x, y = v
+        machine.V((float(x), float(y), 0.0, 1.0))
+    except Exception:
+        _checked_call("v2s", (v,), more)
+
+
+@_export
+def v2i(v=_NO, *more):
+    """v2i(3G): a vertex of 2 longs (z = 0, w = 1), inside bgn*/end*."""
+    try:
+        x, y = v
+        machine.V((float(x), float(y), 0.0, 1.0))
+    except Exception:
+        _checked_call("v2i", (v,), more)
+
+
+@_export
+def v2f(v=_NO, *more):
+    """v2f(3G): a vertex of 2 floats (z = 0, w = 1), inside bgn*/end*."""
+    try:
+        x, y = v
+        machine.V((float(x), float(y), 0.0, 1.0))
+    except Exception:
+        _checked_call("v2f", (v,), more)
+
+
+@_export
+def v2d(v=_NO, *more):
+    """v2d(3G): a vertex of 2 doubles (z = 0, w = 1), inside bgn*/end*."""
+    try:
+        x, y = v
+        machine.V((float(x), float(y), 0.0, 1.0))
+    except Exception:
+        _checked_call("v2d", (v,), more)
+
+
+@_export
+def v3s(v=_NO, *more):
+    """v3s(3G): a vertex of 3 shorts (w = 1), inside bgn*/end*."""
+    try:
+        x, y, z = v
+        machine.V((float(x), float(y), float(z), 1.0))
+    except Exception:
+        _checked_call("v3s", (v,), more)
+
+
+@_export
+def v3i(v=_NO, *more):
+    """v3i(3G): a vertex of 3 longs (w = 1), inside bgn*/end*."""
+    try:
+        x, y, z = v
+        machine.V((float(x), float(y), float(z), 1.0))
+    except Exception:
+        _checked_call("v3i", (v,), more)
+
+
+@_export
+def v3f(v=_NO, *more):
+    """v3f(3G): a vertex of 3 floats (w = 1), inside bgn*/end*."""
+    try:
+        x, y, z = v
+        machine.V((float(x), float(y), float(z), 1.0))
+    except Exception:
+        _checked_call("v3f", (v,), more)
+
+
+@_export
+def v3d(v=_NO, *more):
+    """v3d(3G): a vertex of 3 doubles (w = 1), inside bgn*/end*."""
+    try:
+        x, y, z = v
+        machine.V((float(x), float(y), float(z), 1.0))
+    except Exception:
+        _checked_call("v3d", (v,), more)
+
+
+@_export
+def v4s(v=_NO, *more):
+    """v4s(3G): a vertex of 4 shorts, inside bgn*/end*."""
+    try:
+        x, y, z, w = v
+        machine.V((float(x), float(y), float(z), float(w)))
+    except Exception:
+        _checked_call("v4s", (v,), more)
+
+
+@_export
+def v4i(v=_NO, *more):
+    """v4i(3G): a vertex of 4 longs, inside bgn*/end*."""
+    try:
+        x, y, z, w = v
+        machine.V((float(x), float(y), float(z), float(w)))
+    except Exception:
+        _checked_call("v4i", (v,), more)
+
+
+@_export
+def v4f(v=_NO, *more):
+    """v4f(3G): a vertex of 4 floats, inside bgn*/end*."""
+    try:
+        x, y, z, w = v
+        machine.V((float(x), float(y), float(z), float(w)))
+    except Exception:
+        _checked_call("v4f", (v,), more)
+
+
+@_export
+def v4d(v=_NO, *more):
+    """v4d(3G): a vertex of 4 doubles, inside bgn*/end*."""
+    try:
+        x, y, z, w = v
+        machine.V((float(x), float(y), float(z), float(w)))
+    except Exception:
+        _checked_call("v4d", (v,), more)
+
+
+
+def _n3f_checked(n):
     machine.set_normal(win("n3f"), vec("n3f", n, 3, "normal"))
 
 
+_n3f_checked.__name__ = _n3f_checked.__qualname__ = "n3f"
+_CHECKED["n3f"] = glcall(_n3f_checked, inside=True)
+
+
+@_export
+def n3f(n=_NO, *more):
+    """n3f(3G): the current normal, for the following vertices."""
+    try:
+        x, y, z = n
+        m = machine
+        m.E.extend((len(m.P), EV_NORMAL, float(x), float(y), float(z), 0.0))
+    except Exception:
+        _checked_call("n3f", (n,), more)
+
+
 # -- colours -----------------------------------------------------------------
-def _clamp01(v):
-    # NaN and +-inf pass unclamped: the flush drops the primitive with a warning
-    return min(max(v, 0.0), 1.0) if -1e300 < v < 1e300 else v
+# The calls append their components as given (EV_UNIT 0.0-1.0, EV_BYTE
+# 0-255, EV_CPACK a word); clamping and scaling happen at the flush,
+# vectorised (geometry/batch.py colour_values).  ``EC`` is None in
+# colour-map mode, where these calls are errors.
+def _limit(v, top):
+    """v clamped to 0..top; NaN and +-inf pass unclamped (the flush drops
+    the primitive with a warning)."""
+    return min(max(v, 0.0), top) if -1e300 < v < 1e300 else v
 
 
 def _rgb_only(call):
@@ -101,63 +221,140 @@ def _rgb_only(call):
     return w
 
 
-def _float_colour(name, n):
-    def c(v):
+def _colour_checker(name, n, top):
+    def checked(v):
         w = _rgb_only(name)
         p = vec(name, v, n, "colour")
-        a = _clamp01(p[3]) * 255.0 if n == 4 else 255.0
-        machine.set_colour(w, (_clamp01(p[0]) * 255.0, _clamp01(p[1]) * 255.0,
-                               _clamp01(p[2]) * 255.0, a))
-    c.__name__ = name
-    c.__doc__ = f"{name}(3G): RGB{'A' if n == 4 else ''} colour, components 0.0-1.0."
-    return _export(glcall(c, inside=True))
-
-
-def _int_colour(name, n):
-    def c(v):
-        w = _rgb_only(name)
-        p = vec(name, v, n, "colour")
-        q = [min(max(v, 0.0), 255.0) if -1e300 < v < 1e300 else v for v in p]
+        k = 255.0 / top
+        q = [_limit(c, top) * k for c in p]
         machine.set_colour(w, (q[0], q[1], q[2], q[3] if n == 4 else 255.0))
-    c.__name__ = name
-    c.__doc__ = f"{name}(3G): RGB{'A' if n == 4 else ''} colour, components 0-255."
-    return _export(glcall(c, inside=True))
+    checked.__name__ = checked.__qualname__ = name
+    return glcall(checked, inside=True)
 
 
-c3f = _float_colour("c3f", 3)
-c4f = _float_colour("c4f", 4)
-c3i = _int_colour("c3i", 3)
-c4i = _int_colour("c4i", 4)
-c3s = _int_colour("c3s", 3)
-c4s = _int_colour("c4s", 4)
+for _n in (3, 4):
+    _CHECKED[f"c{_n}f"] = _colour_checker(f"c{_n}f", _n, 1.0)
+    _CHECKED[f"c{_n}i"] = _colour_checker(f"c{_n}i", _n, 255.0)
+    _CHECKED[f"c{_n}s"] = _colour_checker(f"c{_n}s", _n, 255.0)
 
 
 @_export
-@glcall(inside=True)
-def RGBcolor(r, g, b):
-    """RGBcolor(3G): 0-255 components, clamped; alpha := 255.  An error in
-    colour-map mode."""
+def c3f(c=_NO, *more):
+    """c3f(3G): RGB colour, components 0.0-1.0 (clamped); alpha := 255."""
+    try:
+        r, g, b = c
+        m = machine
+        m.EC.extend((len(m.P), EV_UNIT, float(r), float(g), float(b), 1.0))
+    except Exception:
+        _checked_call("c3f", (c,), more)
+
+
+@_export
+def c3i(c=_NO, *more):
+    """c3i(3G): RGB colour, components 0-255 (clamped); alpha := 255."""
+    try:
+        r, g, b = c
+        m = machine
+        m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), 255.0))
+    except Exception:
+        _checked_call("c3i", (c,), more)
+
+
+@_export
+def c3s(c=_NO, *more):
+    """c3s(3G): RGB colour, components 0-255 (clamped); alpha := 255."""
+    try:
+        r, g, b = c
+        m = machine
+        m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), 255.0))
+    except Exception:
+        _checked_call("c3s", (c,), more)
+
+
+@_export
+def c4f(c=_NO, *more):
+    """c4f(3G): RGBA colour, components 0.0-1.0 (clamped)."""
+    try:
+        r, g, b, a = c
+        m = machine
+        m.EC.extend((len(m.P), EV_UNIT, float(r), float(g), float(b), float(a)))
+    except Exception:
+        _checked_call("c4f", (c,), more)
+
+
+@_export
+def c4i(c=_NO, *more):
+    """c4i(3G): RGBA colour, components 0-255 (clamped)."""
+    try:
+        r, g, b, a = c
+        m = machine
+        m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), float(a)))
+    except Exception:
+        _checked_call("c4i", (c,), more)
+
+
+@_export
+def c4s(c=_NO, *more):
+    """c4s(3G): RGBA colour, components 0-255 (clamped)."""
+    try:
+        r, g, b, a = c
+        m = machine
+        m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), float(a)))
+    except Exception:
+        _checked_call("c4s", (c,), more)
+
+
+def _rgbcolor_checked(r, g, b):
     w = _rgb_only("RGBcolor")
     p = [min(max(integer("RGBcolor", v, "component"), 0), 255) for v in (r, g, b)]
     machine.set_colour(w, (float(p[0]), float(p[1]), float(p[2]), 255.0))
 
 
-@_export
-@glcall(inside=True)
-def cpack(word):
-    """cpack(3G): packed 0xAABBGGRR colour (red in the low byte)."""
+def _cpack_checked(word):
     w = _rgb_only("cpack")
     c = ulong(integer("cpack", word, "colour"))
     machine.set_colour(w, (float(c & 0xFF), float((c >> 8) & 0xFF),
                            float((c >> 16) & 0xFF), float((c >> 24) & 0xFF)))
 
 
+_rgbcolor_checked.__name__ = _rgbcolor_checked.__qualname__ = "RGBcolor"
+_cpack_checked.__name__ = _cpack_checked.__qualname__ = "cpack"
+_CHECKED["RGBcolor"] = glcall(_rgbcolor_checked, inside=True)
+_CHECKED["cpack"] = glcall(_cpack_checked, inside=True)
+
+
+@_export
+def RGBcolor(r=_NO, g=_NO, b=_NO, *more):
+    """RGBcolor(3G): 0-255 integer components, clamped; alpha := 255.  An
+    error in colour-map mode."""
+    try:
+        if more:
+            raise TypeError
+        m = machine                    # | 0: integers only (a float is truncated, checked path)
+        m.EC.extend((len(m.P), EV_BYTE, r | 0, g | 0, b | 0, 255))
+    except Exception:
+        _checked_call("RGBcolor", (r, g, b) if b is not _NO else
+                      tuple(a for a in (r, g) if a is not _NO) or (_NO,), more)
+
+
+@_export
+def cpack(word=_NO, *more):
+    """cpack(3G): packed 0xAABBGGRR colour (red in the low byte)."""
+    try:
+        if more:
+            raise TypeError
+        m = machine                    # & : an integer (a float is truncated, checked path)
+        m.EC.extend((len(m.P), EV_CPACK, word & 0xFFFFFFFF, 0, 0, 0))
+    except Exception:
+        _checked_call("cpack", (word,), more)
+
+
 @_export
 @glcall(inside=True)
 def color(index):
     """color(3G): colour index of the current drawmode's framebuffer, clamped
-    to 0..2**getplanes()-1 (below 0 is undefined: 0 here, [S]); an error in
-    RGB mode."""
+    to 0..2**getplanes()-1 (below 0 is undefined: 0 here, docs/decisions.md);
+    an error in RGB mode."""
     w = win("color")
     i = integer("color", index, "colour index")
     if w.st.rgb:
@@ -169,6 +366,195 @@ def color_limit(w):
     """The largest colour index of the current drawmode (color(3G))."""
     from vgx_emulator.framebuffer.layers import planes
     return (1 << planes(w)) - 1
+
+
+# -- bgn / end ---------------------------------------------------------------
+# Each pair is two plain functions around VGX.begin/VGX.end (the one
+# implementation, shared with rect, poly, circ ...); ``machine.W`` is the
+# current window when the fast handles apply (VGX.rebind).  A GLError from
+# the machine is final (it checks before it changes anything); anything else
+# (no window, an object being recorded, a trace) takes the checked path.
+
+def _pair_checkers(kind, bgn_name, end_name):
+    def bgn():
+        machine.begin(win(bgn_name), kind, bgn_name)
+
+    def end():
+        machine.end(win(end_name), kind, end_name)
+    bgn.__name__ = bgn.__qualname__ = bgn_name
+    end.__name__ = end.__qualname__ = end_name
+    # bgn is not allowed inside another pair; end must be callable there
+    _CHECKED[bgn_name] = glcall(bgn)
+    _CHECKED[end_name] = glcall(end, inside=True)
+
+
+for _k, _nm in ((POLYGON, "polygon"), (TMESH, "tmesh"), (QSTRIP, "qstrip"), (LINE, "line"),
+                (CLOSEDLINE, "closedline"), (POINT, "point")):
+    _pair_checkers(_k, "bgn" + _nm, "end" + _nm)
+
+
+@_export
+def bgnpolygon(*more):
+    """bgnpolygon(3G): start a polygon primitive; its vertices follow."""
+    try:
+        if more:
+            raise TypeError
+        machine.begin(machine.W, POLYGON, "bgnpolygon")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["bgnpolygon"](*more)
+
+
+@_export
+def endpolygon(*more):
+    """endpolygon(3G): finish the polygon primitive."""
+    try:
+        if more:
+            raise TypeError
+        machine.end(machine.W, POLYGON, "endpolygon")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["endpolygon"](*more)
+
+
+@_export
+def bgntmesh(*more):
+    """bgntmesh(3G): start a tmesh primitive; its vertices follow."""
+    try:
+        if more:
+            raise TypeError
+        machine.begin(machine.W, TMESH, "bgntmesh")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["bgntmesh"](*more)
+
+
+@_export
+def endtmesh(*more):
+    """endtmesh(3G): finish the tmesh primitive."""
+    try:
+        if more:
+            raise TypeError
+        machine.end(machine.W, TMESH, "endtmesh")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["endtmesh"](*more)
+
+
+@_export
+def bgnqstrip(*more):
+    """bgnqstrip(3G): start a qstrip primitive; its vertices follow."""
+    try:
+        if more:
+            raise TypeError
+        machine.begin(machine.W, QSTRIP, "bgnqstrip")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["bgnqstrip"](*more)
+
+
+@_export
+def endqstrip(*more):
+    """endqstrip(3G): finish the qstrip primitive."""
+    try:
+        if more:
+            raise TypeError
+        machine.end(machine.W, QSTRIP, "endqstrip")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["endqstrip"](*more)
+
+
+@_export
+def bgnline(*more):
+    """bgnline(3G): start a line primitive; its vertices follow."""
+    try:
+        if more:
+            raise TypeError
+        machine.begin(machine.W, LINE, "bgnline")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["bgnline"](*more)
+
+
+@_export
+def endline(*more):
+    """endline(3G): finish the line primitive."""
+    try:
+        if more:
+            raise TypeError
+        machine.end(machine.W, LINE, "endline")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["endline"](*more)
+
+
+@_export
+def bgnclosedline(*more):
+    """bgnclosedline(3G): start a closedline primitive; its vertices follow."""
+    try:
+        if more:
+            raise TypeError
+        machine.begin(machine.W, CLOSEDLINE, "bgnclosedline")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["bgnclosedline"](*more)
+
+
+@_export
+def endclosedline(*more):
+    """endclosedline(3G): finish the closedline primitive."""
+    try:
+        if more:
+            raise TypeError
+        machine.end(machine.W, CLOSEDLINE, "endclosedline")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["endclosedline"](*more)
+
+
+@_export
+def bgnpoint(*more):
+    """bgnpoint(3G): start a point primitive; its vertices follow."""
+    try:
+        if more:
+            raise TypeError
+        machine.begin(machine.W, POINT, "bgnpoint")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["bgnpoint"](*more)
+
+
+@_export
+def endpoint(*more):
+    """endpoint(3G): finish the point primitive."""
+    try:
+        if more:
+            raise TypeError
+        machine.end(machine.W, POINT, "endpoint")
+    except GLError as e:
+        raise_or_report(e)
+    except Exception:
+        _CHECKED["endpoint"](*more)
+
+
+
+@_export
+@glcall(inside=True)
+def swaptmesh():
+    """swaptmesh(3G): toggle the tmesh replace pointer (no triangle)."""
+    machine.swaptmesh(win("swaptmesh"))
 
 
 # -- old-style primitives ------------------------------------------------------
@@ -328,138 +714,3 @@ def gRGBcolor():
     """gRGBcolor(3G): ``r, g, b = gRGBcolor()``."""
     st = win("gRGBcolor").st
     return tuple(int(round(c)) for c in st.colour[:3])
-
-
-# -- fast paths for the per-vertex calls ------------------------------------
-# A ported program calls v*/n3f/c* once per vertex, so their cost is the
-# program's cost.  Each public call below tries the common case inline (a
-# window is open, inside bgn/end, attributes unchanged, numbers given) and
-# hands anything else to the validating version above, which raises the
-# proper GLError (or reports it in lenient mode).  Nothing is changed before
-# every value has been converted, so a failed fast path leaves no trace.
-
-class _Slow(Exception):
-    pass
-
-
-def _fast_vertex(slow, n):
-    if n == 2:
-        def v(a):
-            try:
-                x, y = a
-                win = machine.current
-                b = win.batch
-                if len(b.akey) >= b.cap or b.open is None:
-                    raise _Slow
-                p = (float(x), float(y), 0.0, 1.0)
-                if b.dirty:
-                    b.record_attributes(win.st)
-                b.pos += p
-                b.akey.append(b.cur)
-            except Exception:
-                slow(a)
-    elif n == 3:
-        def v(a):
-            try:
-                x, y, z = a
-                win = machine.current
-                b = win.batch
-                if len(b.akey) >= b.cap or b.open is None:
-                    raise _Slow
-                p = (float(x), float(y), float(z), 1.0)
-                if b.dirty:
-                    b.record_attributes(win.st)
-                b.pos += p
-                b.akey.append(b.cur)
-            except Exception:
-                slow(a)
-    else:
-        def v(a):
-            try:
-                x, y, z, w = a
-                win = machine.current
-                b = win.batch
-                if len(b.akey) >= b.cap or b.open is None:
-                    raise _Slow
-                p = (float(x), float(y), float(z), float(w))
-                if b.dirty:
-                    b.record_attributes(win.st)
-                b.pos += p
-                b.akey.append(b.cur)
-            except Exception:
-                slow(a)
-    v.__name__ = slow.__name__
-    v.__doc__ = slow.__doc__
-    v.__wrapped__ = slow
-    return v
-
-
-for _n in (2, 3, 4):
-    for _t in "sifd":
-        _name = f"v{_n}{_t}"
-        globals()[_name] = _fast_vertex(globals()[_name], _n)
-
-_n3f_checked = n3f
-
-
-def n3f(a):
-    """n3f(3G): the current normal for the following vertices."""
-    try:
-        x, y, z = a
-        if machine.recording is not None:
-            raise _Slow
-        w = machine.current
-        st = w.st
-        st.normal = (float(x), float(y), float(z))
-        st.last_was_normal = True
-        w.batch.dirty = True
-    except Exception:
-        _n3f_checked(a)
-
-
-def _unit(v):
-    v = float(v)
-    if -1e300 < v < 1e300:
-        return 0.0 if v < 0.0 else (1.0 if v > 1.0 else v)
-    return v                      # NaN and +-inf: dropped with a warning at the flush
-
-
-def _byte(v):
-    v = float(v)
-    if -1e300 < v < 1e300:
-        return 0.0 if v < 0.0 else (255.0 if v > 255.0 else v)
-    return v
-
-
-def _fast_colour(slow, n, conv, k):
-    def c(a):
-        try:
-            if n == 3:
-                r, g, b = a
-                al = 255.0
-            else:
-                r, g, b, al = a
-                al = conv(al) * k
-            w = machine.current
-            st = w.st
-            if not st.rgb or machine.recording is not None:
-                raise _Slow
-            st.colour = (conv(r) * k, conv(g) * k, conv(b) * k, al)
-            st.last_was_normal = False
-            if st.material:
-                st.colour_since_bind = True
-            w.batch.dirty = True
-        except Exception:
-            slow(a)
-    c.__name__ = slow.__name__
-    c.__doc__ = slow.__doc__
-    c.__wrapped__ = slow
-    return c
-
-
-c3f = _fast_colour(c3f, 3, _unit, 255.0)
-c4f = _fast_colour(c4f, 4, _unit, 255.0)
-c3i = _fast_colour(c3i, 3, _byte, 1.0)
-c4i = _fast_colour(c4i, 4, _byte, 1.0)
-c3s = _fast_colour(c3s, 3, _byte, 1.0)
-c4s = _fast_colour(c4s, 4, _byte, 1.0)

@@ -13,11 +13,15 @@ import numpy as np
 
 from vgx_emulator import texture as T
 from vgx_emulator.errors import fail
+from vgx_emulator.geometry.batch import EV_TEX
 
 from . import constants as K
 from ._current import glcall, integer, machine, num, token, vec, win
 
-__all__ = ["texdef2d", "tevdef", "tevbind", "texbind", "texgen", "scrsubdivide"]
+__all__ = ["texdef2d", "tevdef", "tevbind", "texbind", "texgen", "scrsubdivide"] + \
+    [f"t{n}{t}" for n in (2, 3, 4) for t in "sifd"]
+
+_NO = object()          # "argument not given": the checked path reports the arity
 
 
 def _props(call, np_count, props, table):
@@ -158,24 +162,140 @@ def scrsubdivide(mode, params):
 
 
 # -- t*(): texture coordinates (allowed inside bgn/end) --------------------
-def _tcall(name, n):
-    def t(v):
+# plain functions with the fast path of primitives.py's per-vertex calls:
+# convert, append one EV_TEX event, set the state; anything else takes the
+# checked path
+def _t_checker(name, n):
+    def checked(v):
         w = win(name)
         p = vec(name, v, n, "texture coordinate")
-        full = p + (0.0, 1.0)[len(p) - 2:] if n < 4 else p
-        if n == 2:
-            full = (p[0], p[1], 0.0, 1.0)
-        elif n == 3:
-            full = (p[0], p[1], p[2], 1.0)
-        w.st.texcoord = full
-        w.batch.dirty = True
-    t.__name__ = name
-    t.__doc__ = f"{name}(3G): texture coordinate for the following vertices."
-    return glcall(t, inside=True)
+        machine.set_texcoord(w, p + (0.0, 1.0)[n - 2:])
+    checked.__name__ = checked.__qualname__ = name
+    return glcall(checked, inside=True)
 
 
-for _n in (2, 3, 4):
-    for _s in "sifd":
-        _nm = f"t{_n}{_s}"
-        globals()[_nm] = _tcall(_nm, _n)
-        __all__.append(_nm)
+_CHECKED = {f"t{n}{t}": _t_checker(f"t{n}{t}", n) for n in (2, 3, 4) for t in "sifd"}
+
+
+def _t_slow(name, v, more):
+    _CHECKED[name](*([] if v is _NO else [v]), *more)
+
+
+def t2s(v=_NO, *more):
+    """t2s(3G): texture coordinate of 2 shorts for the following vertices."""
+    try:
+        s, t = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
+    except Exception:
+        _t_slow("t2s", v, more)
+
+
+def t2i(v=_NO, *more):
+    """t2i(3G): texture coordinate of 2 longs for the following vertices."""
+    try:
+        s, t = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
+    except Exception:
+        _t_slow("t2i", v, more)
+
+
+def t2f(v=_NO, *more):
+    """t2f(3G): texture coordinate of 2 floats for the following vertices."""
+    try:
+        s, t = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
+    except Exception:
+        _t_slow("t2f", v, more)
+
+
+def t2d(v=_NO, *more):
+    """t2d(3G): texture coordinate of 2 doubles for the following vertices."""
+    try:
+        s, t = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
+    except Exception:
+        _t_slow("t2d", v, more)
+
+
+def t3s(v=_NO, *more):
+    """t3s(3G): texture coordinate of 3 shorts for the following vertices."""
+    try:
+        s, t, r = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
+    except Exception:
+        _t_slow("t3s", v, more)
+
+
+def t3i(v=_NO, *more):
+    """t3i(3G): texture coordinate of 3 longs for the following vertices."""
+    try:
+        s, t, r = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
+    except Exception:
+        _t_slow("t3i", v, more)
+
+
+def t3f(v=_NO, *more):
+    """t3f(3G): texture coordinate of 3 floats for the following vertices."""
+    try:
+        s, t, r = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
+    except Exception:
+        _t_slow("t3f", v, more)
+
+
+def t3d(v=_NO, *more):
+    """t3d(3G): texture coordinate of 3 doubles for the following vertices."""
+    try:
+        s, t, r = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
+    except Exception:
+        _t_slow("t3d", v, more)
+
+
+def t4s(v=_NO, *more):
+    """t4s(3G): texture coordinate of 4 shorts for the following vertices."""
+    try:
+        s, t, r, q = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))
+    except Exception:
+        _t_slow("t4s", v, more)
+
+
+def t4i(v=_NO, *more):
+    """t4i(3G): texture coordinate of 4 longs for the following vertices."""
+    try:
+        s, t, r, q = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))
+    except Exception:
+        _t_slow("t4i", v, more)
+
+
+def t4f(v=_NO, *more):
+    """t4f(3G): texture coordinate of 4 floats for the following vertices."""
+    try:
+        s, t, r, q = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))
+    except Exception:
+        _t_slow("t4f", v, more)
+
+
+def t4d(v=_NO, *more):
+    """t4d(3G): texture coordinate of 4 doubles for the following vertices."""
+    try:
+        s, t, r, q = v
+        m = machine
+        m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))
+    except Exception:
+        _t_slow("t4d", v, more)

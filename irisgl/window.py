@@ -342,8 +342,12 @@ def greset():
     st.req_stencil, st.req_accum = old.req_stencil, old.req_accum
     st.front_enabled = not st.double
     st.back_enabled = st.double
+    w.batch.synced = len(w.batch.ev)   # the old state's events do not carry over
+    st.events, w.batch.owner = w.batch, st
     w.st = st
+    machine.rebind()                # the per-vertex calls write to the new state
     machine.matrices_changed(w)
+    machine.attributes_changed(w)
     machine.colormap[:] = default_colormap()
 
 
@@ -491,7 +495,16 @@ def winposition(x1, x2, y1, y2):
     wd, ht = xb - xa + 1, yb - ya + 1
     if wd > 2 * config.SCREEN_WIDTH or ht > 2 * config.SCREEN_HEIGHT:
         fail("winposition", f"a {wd}x{ht} window", "at most twice the screen each way")
+    _on_screen_plane("winposition", xa, xb, ya, yb)
     _reshape(w, xa, ya, wd, ht)
+
+
+def _on_screen_plane(call, *coords):
+    """Screen coordinates of a window's corners are Screencoords (shorts):
+    a window may lie partly or wholly off the screen, not beyond that."""
+    for c in coords:
+        if not -32768 <= c <= 32767:
+            fail(call, f"screen coordinate {c}", "a Screencoord is a short: -32768..32767")
 
 
 @glcall(immediate=True)
@@ -504,6 +517,7 @@ def winmove(orgx, orgy):
     if w.parent is not None and w.parent in machine.windows:
         p = _top(w)
         x, y = x + p.origin[0], y + p.origin[1]
+    _on_screen_plane("winmove", x, y, x + w.width - 1, y + w.height - 1)
     _reshape(w, x, y, w.width, w.height)
 
 

@@ -20,20 +20,27 @@ from .framebuffer import ZMAX, ZMIN, Framebuffer
 from .framebuffer import layers
 from .geometry import lighting, scrbox, stack
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
-from .geometry.batch import CLASS_OF, FILLED, VertexBatch
-from .raster import fragment, variants
+from .geometry.batch import CLASS_OF, EV_COLOUR, EV_NORMAL, EV_TEX, FILLED, VertexBatch
+from .raster import blend, fragment
 from .raster import depth as _depth
 from .raster import stencil as _stencil
+from .raster.variants import RasterKey
 from .scan.spans import fill, fill_pattern, fill_z
 from .scan.triangles import CULL_BACK, CULL_FRONT, CULL_NONE
 from .state import WindowState
 
-KIND_NAMES = {POLYGON: "polygon", TMESH: "tmesh", QSTRIP: "qstrip", LINE: "line",
-              CLOSEDLINE: "closedline", POINT: "point"}
 SRC_AUTO, SRC_FRONT, SRC_BACK, SRC_ZBUFFER = 0, 1, 2, 3
 _SRC_LAYER = {4: layers.PUPDRAW, 5: layers.OVERDRAW, 6: layers.UNDERDRAW}   # SRC_PUP/OVER/UNDER
 
 _DUMMY_C = np.zeros((1, 1), np.uint32)
+_DUMMY_Z = np.zeros((1, 1), np.int32)
+_DUMMY_S = np.zeros((1, 1), np.uint8)
+_SOLID = np.ones((1, 1), np.uint8)
+
+
+def _closed(p):
+    """``VGX.V`` outside bgn/end: the per-vertex call takes its checked path."""
+    raise LookupError("vertex outside bgn/end")
 
 
 class Window:
@@ -48,6 +55,7 @@ class Window:
         self.fb = Framebuffer(width, height)
         self.st = WindowState(width, height)
         self.batch = VertexBatch()
+        self.st.events, self.batch.owner = self.batch, self.st
         self.readsource = SRC_AUTO
         self.frames = 0
         # window-manager state (irisgl.window): title, constraints, border...
@@ -93,7 +101,61 @@ class VGX:
     """The emulated IRIS-4D VGX: a virtual 1280x1024 screen with windows."""
 
     def __init__(self):
+        self._current = self._recording = self._call_hook = None
         self.reset()
+
+    # -- the handles of the per-vertex calls --------------------------------
+    # irisgl's v*/n3f/c*/t* calls append to the current window's lists
+    # through these attributes, with no check of their own: every change of
+    # the current window, of recording, of bgn/end or of the colour mode
+    # rebinds them, and a handle that does not apply (None, or _closed for V)
+    # sends the call down its checked path.
+    @property
+    def current(self):
+        """The current window (winset(3G)), or None."""
+        return self._current
+
+    @current.setter
+    def current(self, win):
+        self._current = win
+        self.rebind()
+
+    @property
+    def recording(self):
+        """The object being recorded (makeobj(3G)), or None."""
+        return self._recording
+
+    @recording.setter
+    def recording(self, ob):
+        self._recording = ob
+        self.rebind()
+
+    @property
+    def call_hook(self):
+        """trace.py: ``(name, f, args)`` runs each top-level call, or None."""
+        return self._call_hook
+
+    @call_hook.setter
+    def call_hook(self, hook):
+        self._call_hook = hook
+        self.rebind()
+
+    def rebind(self):
+        """Point the per-vertex handles at the current window's batch:
+        ``B`` the batch, ``st`` its state, ``P`` its position list, ``E`` its
+        event list (``EC`` the same in RGB mode only), ``V`` the extend of
+        ``P`` inside bgn/end.  None (``_closed``) where the calls must take
+        their checked path: no window, an object being recorded, a trace
+        naming every call.  ``W`` is the window itself for bgn*/end*."""
+        win = self._current
+        if win is None or self._recording is not None or self._call_hook is not None:
+            self.W = self.B = self.st = self.P = self.E = self.EC = None
+            self.V = _closed
+            return
+        b = win.batch
+        self.W, self.B, self.st, self.P, self.E = win, b, win.st, b.pos, b.ev
+        self.EC = b.ev if win.st.rgb else None
+        self.V = b.pos.extend if b.open is not None else _closed
 
     def reset(self):
         """Power-on state: no windows, default colour map, empty definitions."""
@@ -204,6 +266,7 @@ class VGX:
         mode = st.drawmode                 # the requests are the normal framebuffer's
         layers.switch(st, layers.NORMALDRAW)
         st.rgb = st.req_rgb
+        self.rebind()
         st.double = st.req_double
         st.multimap = st.req_multimap
         win.fb.configure(st.double, st.req_stencil, st.req_accum)
@@ -261,7 +324,7 @@ class VGX:
         if self._picking(win):
             # pick/gselect: geometry and clipping only, no pixel (picking.py)
             self.picking.test_batch(b, win.st)
-            b.keep_open_primitive() if b.open is not None else b.reset()
+            b.keep_open_primitive(win.st) if b.open is not None else b.reset()
             return
         st = win.st
         vp = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
@@ -291,7 +354,7 @@ class VGX:
             if self.trace_hook is not None:
                 self.trace_hook(self, win, "draw")
         if b.open is not None:
-            b.keep_open_primitive()
+            b.keep_open_primitive(st)
         else:
             b.reset()
 
@@ -372,62 +435,130 @@ class VGX:
         return out
 
     def _raster_setup(self, win, work, filled=True):
-        """The RasterKey, banks and parameter vector of a pass
-        (raster.variants.choose)."""
+        """The RasterKey, planes tuple and parameter vector of a pass."""
         st, fb = win.st, win.fb
         targets = self._targets(win)
+        # the pop-up, overlay and underlay banks have no z or stencil: only
+        # the normal framebuffer's drawing tests them (layers.py)
+        normal = st.drawmode == layers.NORMALDRAW
+        ztest = st.zbuffer and normal
+        zmask = st.zwritemask & 0xFFFFFF
+        full = layers.index_bits(win)
+        cmask_val = st.cmask & full
+        color = len(targets) > 0 and cmask_val != 0
+        stencil = 0
+        if st.stencil_on and fb.stencil is not None and normal:
+            # 1: the bank is only read (every op ST_KEEP, or swritemask 0)
+            keep = all(op == _stencil.ST_KEEP for op in st.stencil[3:6])
+            stencil = 1 if keep or st.swritemask & ((1 << fb.stencil_planes) - 1) == 0 else 2
         pat = self.patterns.get(st.pattern) if filled and st.pattern else None
-        key, ip = variants.choose(
-            st, fb, targets, bits=layers.index_bits(win), pattern=pat,
-            scissor=_intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1)),
-            origin=win.origin, twoside=bool(work is not None and work.twoside))
+        logic = color and st.logicop != 3
+        key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=color,
+                        gouraud=st.gouraud or st.depthcue, cmode=not st.rgb,
+                        twoside=bool(work is not None and work.twoside),
+                        stencil=stencil,
+                        blend=blend.key_code(*st.blendfunc) if (
+                            color and st.rgb and not logic and st.blendfunc != (1, 0)) else 0,
+                        logic=logic, atest=st.rgb and st.afunc[1] != 7,
+                        pattern=pat is not None,
+                        cmask=color and (cmask_val != full or not normal),
+                        texture=False, dual=color and len(targets) >= 2)
+        zb = fb.ensure_z() if ztest else _DUMMY_Z
         if key.zwrite:
             fb.z_written()
-        return key, variants.banks(key, fb, targets, pat), ip
+        c0 = targets[0] if targets else _DUMMY_C
+        c1 = targets[1] if len(targets) > 1 else _DUMMY_C
+        planes = (c0, c1, zb, fb.stencil if stencil else _DUMMY_S,
+                  pat[1] if pat is not None else _SOLID)
+        sc = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
+        ip = np.zeros(fragment.NPARAMS, np.int64)
+        ip[fragment.P_SX0], ip[fragment.P_SX1], ip[fragment.P_SY0], ip[fragment.P_SY1] = sc
+        ip[fragment.P_ZFUNC] = st.zfunc
+        ip[fragment.P_ZMASK] = -1 if zmask == 0xFFFFFF else zmask
+        near, far = st.depth_range
+        ip[fragment.P_ZLO] = min(near, far)
+        ip[fragment.P_ZHI] = max(near, far)
+        smax = (1 << fb.stencil_planes) - 1
+        ref, func, mask, sfail, spass, szpass = st.stencil
+        ip[fragment.P_SFUNC] = func
+        ip[fragment.P_SREF] = min(ref, smax)             # Decision 2: clamped
+        ip[fragment.P_SMASK] = mask & smax
+        ref = min(ref, smax)                             # Decision 2: clamped
+        ip[fragment.P_FX:fragment.P_FA + 1] = _stencil.op_terms(sfail, ref, smax)
+        ip[fragment.P_PX:fragment.P_PA + 1] = _stencil.op_terms(spass, ref, smax)
+        ip[fragment.P_ZX:fragment.P_ZA + 1] = _stencil.op_terms(szpass, ref, smax)
+        ip[fragment.P_SWMASK] = st.swritemask & smax
+        ip[fragment.P_SMAX] = smax
+        ip[fragment.P_CMASK] = cmask_val
+        ip[fragment.P_AREF], ip[fragment.P_AFUNC] = st.afunc
+        ip[fragment.P_LOGICOP] = st.logicop
+        ip[fragment.P_BS0:fragment.P_BS5 + 1] = blend.factor_terms(st.blendfunc[0], True)
+        ip[fragment.P_BD0:fragment.P_BD5 + 1] = blend.factor_terms(st.blendfunc[1], False)
+        ip[fragment.P_PATSIZE] = pat[0] if pat is not None else 1
+        ip[fragment.P_ORGX], ip[fragment.P_ORGY] = win.origin
+        ip[fragment.P_PADSPAN] = config.PAD_SPAN
+        return key, planes, ip
 
     # ------------------------------------------------------------------
     # primitives (reference 3.2)
     def begin(self, win, kind, call):
+        """bgnpolygon(3G) and the other bgn* calls: open a primitive of
+        ``kind``; the handles of the per-vertex calls now append to it."""
         b = win.batch
         if b.open is not None:
-            fail(call, f"already inside bgn{KIND_NAMES[b.open[0]]}",
-                 f"close it with end{KIND_NAMES[b.open[0]]} first")
+            fail(call, f"already inside {b.open[1]}", f"close it with end{b.open[1][3:]} first")
         klass = CLASS_OF[kind]
-        if b.klass != klass and len(b):      # (cheap test first: bgn is per primitive)
-            self._flush(win)
-        b.klass = klass
+        if b.klass != klass:
+            if len(b):
+                self._flush(win)
+            b.klass = klass
         b.open = (kind, call)
-        b.calls.add(call)
-        b.start = len(b.akey)
-        b.cap = b.start + config.MAX_POLYGON_VERTICES if kind == POLYGON else 1 << 62
+        if call not in b.calls:
+            b.calls.add(call)
+        b.start = b.vbase + (len(b.pos) >> 2)
+        if b.dirty:
+            b.record_attributes(win.st)
+        if win is self.W:
+            self.V = b.pos.extend
 
     def end(self, win, kind, call):
+        """endpolygon(3G) and the other end* calls: close the primitive.  A
+        polygon of more than GD_NVERTEX_POLY (256) vertices is an error here,
+        at its end (docs/decisions.md): it is not drawn, and the pair is
+        closed."""
         b = win.batch
+        name = call[3:]
         if b.open is None or b.open[0] != kind:
-            inside = f"inside bgn{KIND_NAMES[b.open[0]]}" if b.open else "not inside any bgn call"
-            fail(call, f"{inside}", f"end{KIND_NAMES[kind]} closes bgn{KIND_NAMES[kind]}")
-        n = len(b.akey) - b.start
-        while kind == TMESH and b.swaps and b.swaps[-1] >= b.nverts:
+            inside = f"inside {b.open[1]}" if b.open else "not inside any bgn call"
+            fail(call, inside, f"end{name} closes bgn{name}")
+        nverts = b.vbase + (len(b.pos) >> 2)
+        n = nverts - b.start
+        if kind == POLYGON and n > config.MAX_POLYGON_VERTICES:
+            b.drop_open_primitive()
+            self._close(win, b)
+            fail(call, f"{n} vertices in a polygon",
+                 f"at most {config.MAX_POLYGON_VERTICES} (GD_NVERTEX_POLY); it is not drawn")
+        while kind == TMESH and b.swaps and b.swaps[-1] >= nverts:
             b.swaps.pop()                 # a swap after the last vertex swaps nothing
-        concave = kind == POLYGON and win.st.concave
         if n:
-            b.prims.append((kind, b.vbase + b.start, n, concave))
+            b.prims += (kind, b.start, n, kind == POLYGON and win.st.concave)
         b.open = None
-        b.start = len(b.akey)
+        if win is self.W:
+            self.V = _closed
         if self.display_hook is not None:
             self.display_hook(win)          # a real window: drawing shows as it happens
 
+    def _close(self, win, b):
+        b.open = None
+        if win is self.W:
+            self.V = _closed
+
     def vertex(self, win, x, y, z, w, call):
+        """A vertex of the open primitive (the checked path of v*)."""
         b = win.batch
         if b.open is None:
             fail(call, "vertex outside bgn/end", "call it between bgn* and end*")
-        if len(b.akey) >= b.cap:
-            fail(call, f"more than {config.MAX_POLYGON_VERTICES} vertices in a polygon",
-                 "GD_NVERTEX_POLY is 256")
-        if b.dirty:
-            b.record_attributes(win.st)
         b.pos += (x, y, z, w)
-        b.akey.append(b.cur)
 
     def swaptmesh(self, win):
         b = win.batch
@@ -436,10 +567,11 @@ class VGX:
         b.swaps.append(b.nverts)
 
     def polyline_vertices(self, win, kind, pts, call):
-        """A whole primitive from a point list (rect, poly, polf, ...)."""
+        """A whole primitive from a point list of 4-tuples (rect, poly, polf, ...)."""
         self.begin(win, kind, call)
+        pos = win.batch.pos
         for p in pts:
-            self.vertex(win, *p, call)
+            pos += p
         self.end(win, kind, call)
 
     def primitive_array(self, win, kind, pts, call, colours=None):
@@ -451,21 +583,20 @@ class VGX:
             fail(call, f"{len(pts)} vertices in a polygon", "GD_NVERTEX_POLY is 256")
         self.begin(win, kind, call)
         b = win.batch
-        if colours is None:
-            if b.dirty:
-                b.record_attributes(win.st)
-            b.pos += pts.ravel().tolist()
-            b.akey += [b.cur] * len(pts)
-        else:
-            st = win.st
-            keep = st.colour, st.last_was_normal
-            for p, c in zip(pts.tolist(), colours):   # per-vertex colours: one record each
-                self.set_colour(win, tuple(c))
-                b.record_attributes(st)
-                b.pos += p
-                b.akey.append(b.cur)
-            st.colour, st.last_was_normal = keep
-            b.dirty = True
+        if colours is not None:
+            # one colour event per vertex, then the current attributes again
+            n0 = len(b.pos)
+            ev = np.zeros((len(pts), 6))
+            ev[:, 0] = np.arange(n0, n0 + 4 * len(pts), 4)
+            ev[:, 1] = EV_COLOUR
+            ev[:, 2:6] = np.asarray(colours, np.float64).reshape(-1, 4)
+            b.ev += ev.ravel().tolist()
+            b.synced = len(b.ev)           # the current colour stays as it was
+            if win.st.material:
+                win.st.colour_since_bind = True
+        b.pos += pts.ravel().tolist()
+        if colours is not None:
+            b.record_attributes(win.st)
         self.end(win, kind, call)
 
     def polyline_eye_vertices(self, win, kind, projection, pts, call):
@@ -475,17 +606,17 @@ class VGX:
         from .geometry.batch import Transform
         b = win.batch
         if b.open is not None:
-            fail(call, f"inside bgn{KIND_NAMES[b.open[0]]}", "call it outside bgn/end")
+            fail(call, f"inside {b.open[1]}", "call it outside bgn/end")
         klass = CLASS_OF[kind]
         if len(b) and b.klass != klass:
             self._flush(win)
         b.klass = klass
         b.xforms.append(Transform(np.eye(4), np.asarray(projection, np.float64)))
         b.xf_dirty = False
-        b.record_attributes(win.st)          # the current colour, with that transform
+        rec = b.record_row(win.st)          # the current colour, with that transform
         v0 = b.nverts
         pts = np.ascontiguousarray(pts, np.float64).reshape(-1, 4)
-        b.add_vertices(pts, np.full(len(pts), b.cur, np.int64))
+        b.add_vertices(pts, np.repeat(rec[None], len(pts), 0))
         b.add_block(np.array([[kind, v0, len(pts), 0]], np.int64), call)
         b.xf_dirty = True             # the next vertices use the matrices in force again
         b.dirty = True
@@ -500,20 +631,40 @@ class VGX:
         st.gpos = p
 
     # ------------------------------------------------------------------
-    # current attributes: they do not flush, they start a new record
+    # current attributes: they do not flush; each is an event of the batch
+    # (geometry/batch.py), as irisgl's per-vertex calls append it
     def set_colour(self, win, rgba):
         st = win.st
-        st.colour = rgba
+        st.colour = rgba = tuple(rgba)
         st.last_was_normal = False
         if st.material:
             st.colour_since_bind = True
-        win.batch.dirty = True
+        self._event(win, (EV_COLOUR,) + rgba)
 
     def set_normal(self, win, n):
         st = win.st
-        st.normal = n
+        st.normal = n = tuple(n)
         st.last_was_normal = True
-        win.batch.dirty = True
+        self._event(win, (EV_NORMAL,) + n + (0.0,))
+
+    def set_texcoord(self, win, strq):
+        win.st.texcoord = strq = tuple(strq)
+        self._event(win, (EV_TEX,) + strq)
+
+    def _event(self, win, kind_values):
+        """Append an attribute event the state already holds (synced)."""
+        b = win.batch
+        b.ev += (len(b.pos),) + kind_values
+        b.synced = len(b.ev)
+
+    def attributes_changed(self, win):
+        """Something a vertex carries changed other than its normal, colour
+        or texture coordinate (lmbind, lmcolor, drawmode, popattributes): the
+        following vertices take a new record."""
+        b = win.batch
+        b.dirty = True
+        if b.open is not None:
+            b.record_attributes(win.st)
 
     def matrices_changed(self, win):
         b = win.batch
@@ -562,7 +713,7 @@ class VGX:
                 st.backmaterial = idx
             st.colour_since_bind = False
             st.mat_override = {}       # binding a material discards lmcolor changes
-            win.batch.dirty = True
+            self.attributes_changed(win)
         elif target == lighting.LMODEL:
             self.state_change(win)
             st.lmodel = index if index in self.defs[lighting.DEFLMODEL] else 0

@@ -246,9 +246,10 @@ def replay_run(machine, win, run):
         rec[:, 7] = np.where(lw, LAST_WAS_NORMAL, 0) | np.where(since, COLOUR_SINCE_BIND, 0)
         rec[:, 8] = xform
         rec[:, 13] = mat
+        rec = rec[run.akey]               # per vertex
         run.memo = (key, rec)
     v0 = b.nverts
-    b.add_vertices(run.pos, run.akey + b.add_records(rec))
+    b.add_vertices(run.pos, rec)
     if len(run.swaps):
         b.swaps += (run.swaps + v0).tolist()
     table = run.table.copy()

@@ -1,15 +1,25 @@
-"""The immediate-mode vertex stream of one window.
+"""The vertex stream of one window.
 
-``v*`` calls append a position and a key into a small table of attribute
-records (normal, colour, flags, transform); a new record is made only when a
-normal, colour or matrix call changed something since the last vertex, so a
-vertex costs two list appends.  Display-list replay appends whole numpy
-blocks of vertices and records instead (``add_vertices``/``add_records``);
-the immediate lists hold what came after the last block, and indices
-(``akey`` values, primitive starts, swaps) are global over blocks + lists.
-Primitives are (kind, start, count, seq, flags) records.  A batch holds one
-class of primitive (filled, line or point) so that drawing order between
-classes is kept by flushing on a change.
+Immediate mode leaves two flat Python lists, appended to by one C call each:
+
+* ``pos``: x, y, z, w of every vertex (``v*`` calls extend it by 4 floats);
+* ``ev``: attribute events of ``EVW`` numbers ``[at, kind, a, b, c, d]``:
+  the value applies from the vertex whose x is ``pos[at]`` on (``at`` is
+  ``len(pos)`` when the call came).  ``n3f``, the colour calls and ``t*``
+  append their values as given (a colour is clamped, scaled or unpacked
+  here, vectorised, not in the call); any other change of what a vertex
+  carries (matrices, ``lmbind``, ``lmcolor``, ``drawmode``,
+  ``popattributes``) makes a whole attribute record (`record_attributes`)
+  and an ``EV_REC`` event naming it.  The window state's current
+  attributes are read through `sync`, which takes the newest events.
+
+No Python runs per vertex at the flush: `arrays` finds, vectorised, the
+last event of each kind before every vertex (`per_vertex`).  Display-list
+replay, NURBS and curveit append whole blocks of positions and records
+(`add_vertices`); the immediate lists then continue after them.  Vertex
+numbers in primitives and swaps are global over blocks + lists.  A batch
+holds one class of primitive (filled, line or point) so that drawing order
+between classes is kept by flushing on a change.
 """
 import numpy as np
 
@@ -19,13 +29,65 @@ FILLED, LINES, POINTS = 0, 1, 2
 CLASS_OF = {POLYGON: FILLED, TMESH: FILLED, QSTRIP: FILLED,
             LINE: LINES, CLOSEDLINE: LINES, POINT: POINTS}
 
-# attribute record flags
-#: floats per attribute record: normal (3), colour (4), flags, transform, s t r q,
-#: material (an index into VertexBatch.mats)
+#: the columns of an attribute record (float64): normal, colour (0..255, or
+#: index, 0, 0, 0), flags, transform index (into ``xforms``), s t r q, material
+#: index (into ``mats``)
+R_NORMAL = slice(0, 3)
+R_COLOUR = slice(3, 7)
+R_FLAGS = 7
+R_XFORM = 8
+R_STRQ = slice(9, 13)
+R_MATERIAL = 13
 RECORD = 14
 
+# R_FLAGS bits
 LAST_WAS_NORMAL = 1
 COLOUR_SINCE_BIND = 2
+
+#: attribute event kinds and width.  Colour events: EV_COLOUR final 0..255
+#: RGBA (or an index); EV_UNIT c3f/c4f components 0.0-1.0 (clamped, times
+#: 255); EV_BYTE c3i/c3s/c4i/c4s/RGBcolor components 0-255 (clamped);
+#: EV_CPACK a 0xAABBGGRR word
+EV_REC, EV_NORMAL, EV_TEX, EV_COLOUR, EV_UNIT, EV_BYTE, EV_CPACK = range(7)
+COLOUR_KINDS = (EV_COLOUR, EV_UNIT, EV_BYTE, EV_CPACK)
+EVW = 6
+
+
+def _clamped(v, top):
+    """v clamped to 0..top; NaN and +-inf pass (the flush drops the primitive
+    with a warning)."""
+    return min(max(v, 0.0), top) if -1e300 < v < 1e300 else v
+
+
+def colour_value(kind, a, b, c, d):
+    """The 0..255 RGBA floats of one colour event (c3f(3G), cpack(3G) ...)."""
+    if kind == EV_COLOUR:
+        return (float(a), float(b), float(c), float(d))
+    if kind == EV_UNIT:
+        return tuple(_clamped(float(v), 1.0) * 255.0 for v in (a, b, c, d))
+    if kind == EV_BYTE:
+        return tuple(_clamped(float(v), 255.0) for v in (a, b, c, d))
+    w = int(a)
+    return (float(w & 0xFF), float(w >> 8 & 0xFF), float(w >> 16 & 0xFF), float(w >> 24 & 0xFF))
+
+
+def colour_values(kind, vals):
+    """colour_value over (m,) kinds and (m, 4) values (vectorised)."""
+    out = vals.copy()
+    unit = kind == EV_UNIT
+    byte = kind == EV_BYTE
+    fin = np.isfinite(vals)
+    if unit.any():
+        v = vals[unit]
+        out[unit] = np.where(fin[unit], np.clip(v, 0.0, 1.0), v) * 255.0
+    if byte.any():
+        v = vals[byte]
+        out[byte] = np.where(fin[byte], np.clip(v, 0.0, 255.0), v)
+    pk = kind == EV_CPACK
+    if pk.any():
+        w = vals[pk, 0].astype(np.int64)
+        out[pk] = np.stack([(w >> s) & 0xFF for s in (0, 8, 16, 24)], 1).astype(np.float64)
+    return out
 
 
 class Transform:
@@ -40,95 +102,117 @@ class Transform:
             self.clip = modelview @ projection
 
 
+def attribute_record(st, xform, material):
+    """The RECORD floats of the current attributes of ``st``."""
+    flags = (LAST_WAS_NORMAL if st.last_was_normal else 0) | \
+            (COLOUR_SINCE_BIND if st.colour_since_bind else 0)
+    return st.normal + st.colour + (flags, xform) + st.texcoord + (material,)
+
+
+def per_vertex(ev, recs, n, mats):
+    """The (n, RECORD) attributes of vertices 0..n-1 from the events ``ev``
+    (m, EVW) and the records ``recs`` the EV_REC events name: a vertex takes
+    its last record, with the normal, colour and texture coordinate of any
+    later n3f/colour/t* event; LAST_WAS_NORMAL follows the later of the last
+    normal and colour (lmcolor(3G)), COLOUR_SINCE_BIND is set by a colour
+    sent while a material is bound.  O(n + m): one searchsorted, then a
+    running maximum of event indices per kind."""
+    at, kind = ev[:, 0], ev[:, 1]
+    idx = np.arange(len(ev))
+    last = np.searchsorted(at, np.arange(0, 4 * n, 4), side="right") - 1
+    if n and last[0] < 0:
+        raise AssertionError("a vertex before any attribute record")
+
+    def upto(mask):
+        """Per vertex: the index of the last event of ``mask`` before it (-1: none)."""
+        return np.maximum.accumulate(np.where(mask, idx, -1))[last]
+    rr = upto(kind == EV_REC)
+    if n and rr[0] < 0:
+        raise AssertionError("a vertex before any attribute record")
+    out = recs[ev[rr, 2].astype(np.int64)]
+    nn = upto(kind == EV_NORMAL)
+    cc = upto(kind >= EV_COLOUR)
+    tt = upto(kind == EV_TEX)
+    _override(out, R_NORMAL, nn > rr, ev[nn, 2:5])
+    _override(out, R_STRQ, tt > rr, ev[tt, 2:6])
+    use = cc > rr
+    later = use | (nn > rr)
+    if later.any():
+        _override(out, R_COLOUR, use, colour_values(kind, ev[:, 2:6])[cc])
+        flags = out[:, R_FLAGS].astype(np.int64)
+        lwn = np.where(later, nn > cc, (flags & LAST_WAS_NORMAL) != 0)
+        bound = np.array([m[0] != 0 for m in mats], bool)[out[:, R_MATERIAL].astype(np.int64)]
+        since = ((flags & COLOUR_SINCE_BIND) != 0) | (use & bound)
+        out[:, R_FLAGS] = np.where(lwn, LAST_WAS_NORMAL, 0) | np.where(since, COLOUR_SINCE_BIND, 0)
+    return out
+
+
+def _override(out, cols, use, values):
+    """out[use, cols] = values[use], whole columns when every row is used."""
+    if use.all():
+        out[:, cols] = values
+    elif use.any():
+        out[use, cols] = values[use]
+
+
 class VertexBatch:
     def __init__(self):
+        self.pos = []               # flat x, y, z, w after the last vertex block
+        self.ev = []                # flat attribute events (EVW numbers) for ``pos``
+        self.synced = 0             # len(ev) when the window state last took them (sync)
+        self.attrs = []             # flat records the EV_REC events name
+        self.owner = None           # the WindowState whose current attributes ev updates
         self.open = None            # (kind, call name) of the primitive being built
         self.reset()
 
     def reset(self):
-        self.pos = []               # flat x, y, z, w floats after the last vertex block
-        self.akey = []              # per vertex: global index of its attribute record
-        self.vblocks = []           # earlier vertices: [(pos (n, 4), akey (n,))]
+        # ``pos`` and ``ev`` are emptied in place: irisgl's per-vertex calls
+        # hold their bound methods (machine.VGX.rebind)
+        self.sync_owner()
+        del self.pos[:]
+        del self.ev[:]
+        del self.attrs[:]
+        self.synced = 0
+        self.vblocks = []           # earlier vertices: [(pos (n, 4), records (n, RECORD))]
         self.vbase = 0              # vertices in vblocks
-        self.cap = 1 << 62          # len(akey) at which the open polygon is full
-        self.attrs = []             # flat records after the last record block
-        self.ablocks = []           # earlier records: [(m, RECORD) float64]
-        self.abase = 0              # records in ablocks
         self.xforms = []
         self.mats = []              # (material, backmaterial, lmcolor overrides) in force
-        self.prims = []             # (kind, start, count, concave) of immediate primitives
+        self.prims = []             # flat kind, start, count, concave of immediate primitives
         self.blocks = []            # earlier primitives as (P, 4) int64 arrays, in order
-        self.swaps = []             # global vertex indices with a swaptmesh before them
+        self.swaps = []             # global vertex numbers with a swaptmesh before them
         self.calls = set()          # the calls whose primitives are in the batch (warnings)
         self.klass = None
-        self.start = 0              # len(akey) where the open primitive starts
-        self.cur = -1
+        self.start = 0              # global number of the open primitive's first vertex
         self.dirty = True           # attributes changed since the last record
         self.xf_dirty = True        # matrices changed since the last Transform
 
     def __len__(self):
-        return len(self.prims) + sum(len(b) for b in self.blocks)
+        return len(self.prims) // 4 + sum(len(b) for b in self.blocks)
 
     @property
     def nverts(self):
-        """Vertices so far: the global index of the next one."""
-        return self.vbase + len(self.akey)
+        """Vertices so far: the global number of the next one."""
+        return self.vbase + (len(self.pos) >> 2)
 
-    def add_vertices(self, pos, akey):
-        """Append (n, 4) positions whose records are akey (global indices)
-        as one block, after the immediate vertices (no primitive is open)."""
-        if self.akey:
-            self.vblocks.append((np.array(self.pos, np.float64).reshape(-1, 4),
-                                 np.array(self.akey, np.int64)))
-            self.vbase += len(self.akey)
-            self.pos, self.akey = [], []
-        self.vblocks.append((pos, akey))
-        self.vbase += len(akey)
-        self.start = 0
-
-    def add_records(self, recs):
-        """Append (m, RECORD) attribute records; returns the global index of the first."""
-        if self.attrs:
-            a = np.array(self.attrs, np.float64).reshape(-1, RECORD)
-            self.ablocks.append(a)
-            self.abase += len(a)
-            self.attrs = []
-        self.ablocks.append(recs)
-        self.abase += len(recs)
-        self.dirty = True
-        return self.abase - len(recs)
-
-    def add_block(self, table, call="callobj"):
-        """Append primitives (P, 4) [kind, start, count, concave] as one block
-        (display-list replay, NURBS, curveit: ``call`` names it in warnings),
-        after the immediate ones already recorded."""
-        if self.prims:
-            self.blocks.append(np.array(self.prims, np.int64).reshape(-1, 4))
-            self.prims = []
-        self.blocks.append(table)
-        self.calls.add(call)
-
-    def prim_table(self):
-        """Every primitive of the batch in submission order, (P, 4) int64."""
-        parts = list(self.blocks)
-        if self.prims:
-            parts.append(np.array(self.prims, np.int64).reshape(-1, 4))
-        if not parts:
-            return np.zeros((0, 4), np.int64)
-        return parts[0] if len(parts) == 1 else np.concatenate(parts)
-
+    # -- appending -----------------------------------------------------------
     def record_attributes(self, st):
-        """Make the attribute record for the following vertices."""
+        """An EV_REC event: the following vertices carry the attributes of
+        ``st`` with the matrices and material in force now."""
         if self.xf_dirty or not self.xforms:
             mv, pr = st.matrices.vertex_matrices()
             self.xforms.append(Transform(mv, pr))
             self.xf_dirty = False
-        flags = (LAST_WAS_NORMAL if st.last_was_normal else 0) | \
-                (COLOUR_SINCE_BIND if st.colour_since_bind else 0)
-        self.attrs += st.normal + st.colour + (flags, len(self.xforms) - 1) + st.texcoord + \
-            (self.material_ref(st),)
-        self.cur = self.abase + len(self.attrs) // RECORD - 1
+        self.ev += (len(self.pos), EV_REC, len(self.attrs) // RECORD, 0.0, 0.0, 0.0)
+        self.attrs += attribute_record(st, len(self.xforms) - 1, self.material_ref(st))
         self.dirty = False
+
+    def record_row(self, st):
+        """The current attributes as one (RECORD,) array (for array blocks)."""
+        if self.xf_dirty or not self.xforms:
+            mv, pr = st.matrices.vertex_matrices()
+            self.xforms.append(Transform(mv, pr))
+            self.xf_dirty = False
+        return np.array(attribute_record(st, len(self.xforms) - 1, self.material_ref(st)))
 
     def material_ref(self, st):
         """Index of the bound material state (lmbind MATERIAL/BACKMATERIAL and
@@ -140,38 +224,131 @@ class VertexBatch:
             self.mats.append((st.material, st.backmaterial, st.mat_override))
         return len(self.mats) - 1
 
-    def keep_open_primitive(self):
-        """After a flush inside bgn/end: keep only the open primitive's vertices
-        (and every record: they are few, and the primitive's keys point into them)."""
-        first = self.vbase + self.start
-        pos = self.pos[4 * self.start:]
-        akey = self.akey[self.start:]
+    def add_vertices(self, pos, recs):
+        """Append (n, 4) positions with their (n, RECORD) records as one
+        block, after the immediate vertices (no primitive is open)."""
+        self._seal()
+        self.vblocks.append((pos, recs))
+        self.vbase += len(pos)
+        self.dirty = True
+
+    def add_block(self, table, call="callobj"):
+        """Append primitives (P, 4) [kind, start, count, concave] as one block
+        (display-list replay, NURBS, curveit: ``call`` names it in warnings),
+        after the immediate ones already recorded."""
+        if self.prims:
+            self.blocks.append(np.array(self.prims, np.int64).reshape(-1, 4))
+            self.prims = []
+        self.blocks.append(table)
+        self.calls.add(call)
+
+    def drop_open_primitive(self):
+        """Forget the open primitive's vertices (endpolygon of too many)."""
+        first = self.start - self.vbase
+        if first < 0:                      # it began before a flush: nothing else is kept
+            self.vblocks, self.vbase, first = [], 0, 0
+            self.start = 0
+        del self.pos[4 * first:]
+        self.swaps = [s for s in self.swaps if s < self.start]
+        self.dirty = True
+
+    # -- reading -------------------------------------------------------------
+    def _tail(self):
+        """(positions (n, 4), records (n, RECORD)) of the immediate lists."""
+        n = len(self.pos) >> 2
+        pos = np.array(self.pos, np.float64).reshape(n, 4)
+        ev = np.array(self.ev, np.float64).reshape(-1, EVW)
+        recs = np.array(self.attrs, np.float64).reshape(-1, RECORD)
+        return pos, per_vertex(ev, recs, n, self.mats)
+
+    def sync(self, st):
+        """Give ``st`` the newest normal, colour, texture coordinate and
+        their flags among the events since the last sync (a C-speed search
+        of the kinds, then a few Python steps)."""
+        ev, first = self.ev, self.synced
+        self.synced = len(ev)             # before the writes below: they sync too
+        back = ev[len(ev) - EVW + 1:first:-EVW]       # the kinds, newest first
+        last = {}
+        for group, kinds in ((EV_NORMAL, (EV_NORMAL,)), (EV_TEX, (EV_TEX,)),
+                             (EV_COLOUR, COLOUR_KINDS)):
+            hit = len(back)
+            for k in kinds:
+                try:
+                    hit = min(hit, back.index(k, 0, hit))
+                except ValueError:
+                    pass
+            if hit < len(back):
+                last[group] = len(back) - 1 - hit    # index among the new events
+        d = st.__dict__
+        if EV_NORMAL in last:
+            j = first + EVW * last[EV_NORMAL]
+            d["_normal"] = (float(ev[j + 2]), float(ev[j + 3]), float(ev[j + 4]))
+        if EV_TEX in last:
+            j = first + EVW * last[EV_TEX]
+            d["_texcoord"] = tuple(float(v) for v in ev[j + 2:j + 6])
+        if EV_COLOUR in last:
+            j = first + EVW * last[EV_COLOUR]
+            d["_colour"] = colour_value(*ev[j + 1:j + 6])
+            if st.material:
+                d["_colour_since_bind"] = True
+        if EV_NORMAL in last or EV_COLOUR in last:
+            d["_last_was_normal"] = last.get(EV_NORMAL, -1) > last.get(EV_COLOUR, -1)
+
+    def sync_owner(self):
+        """Sync the window state these events belong to, before they go."""
+        st = self.owner
+        if st is not None and st.events is self and self.synced != len(self.ev):
+            self.sync(st)
+
+    def _seal(self):
+        """Turn the immediate lists into a vertex block (their events are
+        consumed: the next vertices need a new record, ``dirty``)."""
+        self.sync_owner()
+        if self.pos:
+            self.vblocks.append(self._tail())
+            self.vbase += len(self.pos) >> 2
+            del self.pos[:]
+        del self.ev[:]
+        del self.attrs[:]
+        self.synced = 0
+        self.dirty = True
+
+    def keep_open_primitive(self, st):
+        """After a flush inside bgn/end: keep only the open primitive's
+        vertices, as a block; the next ones continue it with the attributes
+        of ``st``."""
+        self._seal()
+        first = self.start
+        pos = np.concatenate([p for p, _ in self.vblocks])[first:] if self.vblocks else None
+        recs = np.concatenate([r for _, r in self.vblocks])[first:] if self.vblocks else None
         swaps = [s - first for s in self.swaps if s >= first]
-        keep = (self.attrs, self.ablocks, self.abase, self.xforms, self.mats, self.klass)
-        cap = self.cap - self.start
+        keep = (self.xforms, self.mats, self.klass, self.open)
         calls = {self.open[1]} if self.open else set()
         self.reset()
-        self.calls = calls
-        self.cap = cap
-        self.pos, self.akey, self.swaps = pos, akey, swaps
-        self.attrs, self.ablocks, self.abase, self.xforms, self.mats, self.klass = keep
-        self.cur = self.abase + len(self.attrs) // RECORD - 1
-        self.dirty = True
+        self.xforms, self.mats, self.klass, self.open = keep
+        self.calls, self.swaps = calls, swaps
+        if pos is not None and len(pos):
+            self.vblocks.append((pos, recs))
+            self.vbase = len(pos)
         self.xf_dirty = True
+        self.record_attributes(st)
 
     def arrays(self):
         """(positions (N, 4), attributes (N, RECORD)) as float64 arrays."""
-        pos = [p for p, _ in self.vblocks]
-        keys = [k for _, k in self.vblocks]
-        if self.akey:
-            pos.append(np.array(self.pos, np.float64).reshape(-1, 4))
-            keys.append(np.array(self.akey, np.int64))
-        recs = list(self.ablocks)
-        if self.attrs:
-            recs.append(np.array(self.attrs, np.float64).reshape(-1, RECORD))
-        if not pos:
+        parts = list(self.vblocks)
+        if self.pos:
+            parts.append(self._tail())
+        if not parts:
             return np.zeros((0, 4)), np.zeros((0, RECORD))
-        pos = pos[0] if len(pos) == 1 else np.concatenate(pos)
-        keys = keys[0] if len(keys) == 1 else np.concatenate(keys)
-        recs = recs[0] if len(recs) == 1 else np.concatenate(recs)
-        return pos, recs[keys]
+        if len(parts) == 1:
+            return parts[0]
+        return (np.concatenate([p for p, _ in parts]), np.concatenate([r for _, r in parts]))
+
+    def prim_table(self):
+        """Every primitive of the batch in submission order, (P, 4) int64."""
+        parts = list(self.blocks)
+        if self.prims:
+            parts.append(np.array(self.prims, np.int64).reshape(-1, 4))
+        if not parts:
+            return np.zeros((0, 4), np.int64)
+        return parts[0] if len(parts) == 1 else np.concatenate(parts)

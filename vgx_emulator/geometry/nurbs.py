@@ -262,8 +262,7 @@ def feed(machine, win, kind, pos, prims, normals=None, colours=None, tex=None,
     rec[:, 9:13] = st.texcoord if tex is None else tex
     rec[:, 13] = b.material_ref(st)
     v0 = b.nverts
-    first = b.add_records(rec)
-    b.add_vertices(np.ascontiguousarray(pos, np.float64), np.arange(first, first + n))
+    b.add_vertices(np.ascontiguousarray(pos, np.float64), rec)
     table = np.zeros((len(prims), 4), np.int64)
     table[:, 0] = kind
     table[:, 1] = np.asarray(prims)[:, 0] + v0
