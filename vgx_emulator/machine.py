@@ -21,10 +21,9 @@ from .framebuffer import layers
 from .geometry import lighting, scrbox, stack
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
 from .geometry.batch import CLASS_OF, EV_COLOUR, EV_NORMAL, EV_TEX, FILLED, VertexBatch
-from .raster import blend, fragment
+from .raster import fragment, variants
 from .raster import depth as _depth
 from .raster import stencil as _stencil
-from .raster.variants import RasterKey
 from .scan.spans import fill, fill_pattern, fill_z
 from .scan.triangles import CULL_BACK, CULL_FRONT, CULL_NONE
 from .state import WindowState
@@ -33,9 +32,6 @@ SRC_AUTO, SRC_FRONT, SRC_BACK, SRC_ZBUFFER = 0, 1, 2, 3
 _SRC_LAYER = {4: layers.PUPDRAW, 5: layers.OVERDRAW, 6: layers.UNDERDRAW}   # SRC_PUP/OVER/UNDER
 
 _DUMMY_C = np.zeros((1, 1), np.uint32)
-_DUMMY_Z = np.zeros((1, 1), np.int32)
-_DUMMY_S = np.zeros((1, 1), np.uint8)
-_SOLID = np.ones((1, 1), np.uint8)
 
 
 def _closed(p):
@@ -435,69 +431,18 @@ class VGX:
         return out
 
     def _raster_setup(self, win, work, filled=True):
-        """The RasterKey, planes tuple and parameter vector of a pass."""
+        """The RasterKey, banks and parameter vector of a pass
+        (raster.variants.choose)."""
         st, fb = win.st, win.fb
         targets = self._targets(win)
-        # the pop-up, overlay and underlay banks have no z or stencil: only
-        # the normal framebuffer's drawing tests them (layers.py)
-        normal = st.drawmode == layers.NORMALDRAW
-        ztest = st.zbuffer and normal
-        zmask = st.zwritemask & 0xFFFFFF
-        full = layers.index_bits(win)
-        cmask_val = st.cmask & full
-        color = len(targets) > 0 and cmask_val != 0
-        stencil = 0
-        if st.stencil_on and fb.stencil is not None and normal:
-            # 1: the bank is only read (every op ST_KEEP, or swritemask 0)
-            keep = all(op == _stencil.ST_KEEP for op in st.stencil[3:6])
-            stencil = 1 if keep or st.swritemask & ((1 << fb.stencil_planes) - 1) == 0 else 2
         pat = self.patterns.get(st.pattern) if filled and st.pattern else None
-        logic = color and st.logicop != 3
-        key = RasterKey(ztest=ztest, zwrite=ztest and zmask != 0, color=color,
-                        gouraud=st.gouraud or st.depthcue, cmode=not st.rgb,
-                        twoside=bool(work is not None and work.twoside),
-                        stencil=stencil,
-                        blend=blend.key_code(*st.blendfunc) if (
-                            color and st.rgb and not logic and st.blendfunc != (1, 0)) else 0,
-                        logic=logic, atest=st.rgb and st.afunc[1] != 7,
-                        pattern=pat is not None,
-                        cmask=color and (cmask_val != full or not normal),
-                        texture=False, dual=color and len(targets) >= 2)
-        zb = fb.ensure_z() if ztest else _DUMMY_Z
+        key, ip = variants.choose(
+            st, fb, targets, bits=layers.index_bits(win), pattern=pat,
+            scissor=_intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1)),
+            origin=win.origin, twoside=bool(work is not None and work.twoside))
         if key.zwrite:
             fb.z_written()
-        c0 = targets[0] if targets else _DUMMY_C
-        c1 = targets[1] if len(targets) > 1 else _DUMMY_C
-        planes = (c0, c1, zb, fb.stencil if stencil else _DUMMY_S,
-                  pat[1] if pat is not None else _SOLID)
-        sc = _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
-        ip = np.zeros(fragment.NPARAMS, np.int64)
-        ip[fragment.P_SX0], ip[fragment.P_SX1], ip[fragment.P_SY0], ip[fragment.P_SY1] = sc
-        ip[fragment.P_ZFUNC] = st.zfunc
-        ip[fragment.P_ZMASK] = -1 if zmask == 0xFFFFFF else zmask
-        near, far = st.depth_range
-        ip[fragment.P_ZLO] = min(near, far)
-        ip[fragment.P_ZHI] = max(near, far)
-        smax = (1 << fb.stencil_planes) - 1
-        ref, func, mask, sfail, spass, szpass = st.stencil
-        ip[fragment.P_SFUNC] = func
-        ip[fragment.P_SREF] = min(ref, smax)             # Decision 2: clamped
-        ip[fragment.P_SMASK] = mask & smax
-        ref = min(ref, smax)                             # Decision 2: clamped
-        ip[fragment.P_FX:fragment.P_FA + 1] = _stencil.op_terms(sfail, ref, smax)
-        ip[fragment.P_PX:fragment.P_PA + 1] = _stencil.op_terms(spass, ref, smax)
-        ip[fragment.P_ZX:fragment.P_ZA + 1] = _stencil.op_terms(szpass, ref, smax)
-        ip[fragment.P_SWMASK] = st.swritemask & smax
-        ip[fragment.P_SMAX] = smax
-        ip[fragment.P_CMASK] = cmask_val
-        ip[fragment.P_AREF], ip[fragment.P_AFUNC] = st.afunc
-        ip[fragment.P_LOGICOP] = st.logicop
-        ip[fragment.P_BS0:fragment.P_BS5 + 1] = blend.factor_terms(st.blendfunc[0], True)
-        ip[fragment.P_BD0:fragment.P_BD5 + 1] = blend.factor_terms(st.blendfunc[1], False)
-        ip[fragment.P_PATSIZE] = pat[0] if pat is not None else 1
-        ip[fragment.P_ORGX], ip[fragment.P_ORGY] = win.origin
-        ip[fragment.P_PADSPAN] = config.PAD_SPAN
-        return key, planes, ip
+        return key, variants.banks(key, fb, targets, pat), ip
 
     # ------------------------------------------------------------------
     # primitives (reference 3.2)
