@@ -9,16 +9,53 @@ MB = 1024.0 * 1024.0
 
 def document(results, rel, plots):
     w, h = results["size"]
-    out = [HEADER.format(cmd="python -m study", w=w, h=h,
-                         quick=" (this run: `--quick`, a reduced sweep)" if results["quick"]
-                         else "", repeats=results["repeats"], budget=results["budget_s"])]
+    kind = (" (this run: `--quick`, a reduced sweep)" if results.get("quick") else
+            " (this run: `--full`)" if results.get("full") else "")
+    res = sorted({r["params"]["res"] for sc in results["scenes"].values() for r in sc["rows"]
+                  if r["family"] == "shadow map"}) or [0]
+    out = [HEADER.format(cmd="python -m study", w=w, h=h, quick=kind, repeats=results["repeats"],
+                         budget=results["budget_s"], lo=res[0], hi=res[-1],
+                         tile=results.get("max_tile", 1024), rel=rel,
+                         scenes=_count(len(results["scenes"]), "scene"))]
     out.append("| | |\n|---|---|")
     out += [f"| {k} | {v} |" for k, v in results["meta"].items()]
+    out.append(timing_section(results))
     out.append(MEASURES)
     for name, sc in results["scenes"].items():
         out.append(scene_section(name, sc, rel, plots))
     out.append(LIMITS)
     return "\n".join(out) + "\n"
+
+
+def _count(n, noun):
+    words = {1: "one", 2: "two", 3: "three", 4: "four"}
+    return f"{words.get(n, n)} {noun}" + ("" if n == 1 else "s")
+
+
+def timing_section(results):
+    """How the times were taken, on which machines, and how they are compared."""
+    t = results.get("timing") or {}
+    machines, compared = t.get("machines") or {}, t.get("compared on")
+    lines = [TIMING.format(threads=results["meta"].get("numba threads (timing)", 1),
+                           repeats=results["repeats"])]
+    if not machines:
+        lines.append("No configuration was timed in this run (`--no-timing`, or every "
+                     "timing failed): the time columns are empty.")
+        return "\n".join(lines)
+    lines.append("| machine | cores | numba threads | timing slots | rows timed "
+                 "| load (1 min) during timing |\n|---|---:|---:|---:|---:|---|")
+    for key, m in machines.items():
+        mark = " (compared)" if key == compared else ""
+        slots = ", ".join(str(v) for v in m["slots"]) or "?"
+        lo, hi = m["load (1 min)"]
+        lines.append(f"| {key}{mark} | {m['cores']} | {', '.join(map(str, m['threads']))} "
+                     f"| {slots} | {m['rows']} | {lo:.2f} to {hi:.2f} |")
+    if len(machines) > 1:
+        lines.append(f"\nTimes were taken on {len(machines)} machines.  Only those of "
+                     f"{compared} are compared (findings, Pareto fronts, plots); a row timed "
+                     f"elsewhere shows its time in parentheses with its host and takes no "
+                     f"part in any comparison.")
+    return "\n".join(lines)
 
 
 def scene_section(name, sc, rel, plots):
@@ -40,7 +77,45 @@ def scene_section(name, sc, rel, plots):
     if soft:
         lines += ["\n### Soft shadows, against the converged area-light reference\n",
                   table(soft)]
+    seeded = [r for r in rows if r.get("spread")]
+    if seeded:
+        lines += ["\n### Seeds of the jittered configurations\n", SEEDS, seed_table(seeded)]
+    if sc.get("failed"):
+        lines += ["\n### Failed configurations\n",
+                  "| configuration | seed | error |\n|---|---|---|"]
+        lines += [f"| {f['label']} | {'–' if f['seed'] is None else f['seed']} "
+                  f"| {_cell(f['error'])} |" for f in sc["failed"]]
     return "\n".join(lines)
+
+
+def seed_table(rows):
+    """Mean and spread (min, max, standard deviation) over the seeds."""
+    head = ("| method | seeds | misclassified % mean (min to max, std) "
+            "| RMSE mean (min to max, std) |\n|---|---:|---|---|")
+    body = []
+    for r in rows:
+        cells = []
+        for k, f in (("misclassified", ".3f"), ("rmse", ".2f")):
+            sp = r["spread"][k]
+            cells.append(f"{r[k]:{f}} ({sp['min']:{f}} to {sp['max']:{f}}, {sp['std']:{f}})")
+        body.append(f"| {r['label']} | {len(r['seeds'])} | {cells[0]} | {cells[1]} |")
+    return "\n".join([head] + body)
+
+
+def _cell(text):
+    return str(text).replace("|", "\\|").replace("\n", " ")[:200]
+
+
+def _time_cell(r):
+    if not math.isnan(r["time_ms"]):
+        return f"{r['time_ms']:.0f}"
+    if r.get("time_ms_elsewhere") is not None:
+        return f"({r['time_ms_elsewhere']:.0f} on {r['machine'].split(' ')[0]})"
+    return "–"
+
+
+def _ms(r):
+    return "–" if math.isnan(r["time_ms"]) else f"{r['time_ms']:.0f} ms"
 
 
 def table(rows):
@@ -50,7 +125,7 @@ def table(rows):
     body = []
     for r in rows:
         params = ", ".join(f"{k}={v}" for k, v in r["params"].items()) or "–"
-        t = "–" if math.isnan(r["time_ms"]) else f"{r['time_ms']:.0f}"
+        t = _time_cell(r)
         mem = "–" if not r["memory_bytes"] else (
             f"{r['memory_bytes'] / MB:.1f} ({r['host_peak_bytes'] / MB:.1f} + "
             f"{r['fb_bytes'] / MB:.1f})")
@@ -72,12 +147,12 @@ def findings(hard, soft):
         if r["family"] in ("volumes", "planar"):
             out.append(f"- {r['label']}: {r['false_lit']:.3f} % false lit, "
                        f"{r['false_shadow']:.3f} % false shadow, RMSE {r['rmse']:.2f}, "
-                       f"{r['time_ms']:.0f} ms.")
+                       f"{_ms(r)}.")
     maps = [r for r in hard if r["family"] == "shadow map"]
     res = sorted((r for r in maps if _is_default(r, "res")), key=lambda r: r["params"]["res"])
     if res:
-        seq = ", ".join(f"R={r['params']['res']}: {r['misclassified']:.2f} % / "
-                        f"{r['time_ms']:.0f} ms" for r in res)
+        seq = ", ".join(f"R={r['params']['res']}: {r['misclassified']:.2f} % / {_ms(r)}"
+                        for r in res)
         out.append(f"- Shadow map over resolution (bias 0.05, nearest, 24-bit): misclassified "
                    f"/ time: {seq}.")
     for R in sorted({r["params"]["res"] for r in maps}):
@@ -101,13 +176,14 @@ def findings(hard, soft):
             out.append(f"- PCF {r['params']['pcf']}x{r['params']['pcf']} at R="
                        f"{r['params']['res']}, bias {r['params']['bias']:g}: RMSE {base['rmse']:.2f} -> {r['rmse']:.2f}, "
                        f"misclassified {base['misclassified']:.2f} -> {r['misclassified']:.2f} %, "
-                       f"{base['time_ms']:.0f} -> {r['time_ms']:.0f} ms.")
+                       f"{_ms(base)} -> {_ms(r)}.")
     if soft:
-        seq = ", ".join(f"N={r['params']['n']}: {r['rmse']:.2f} / {r['time_ms']:.0f} ms"
-                        for r in soft)
+        seq = ", ".join(f"N={r['params']['n']}: {r['rmse']:.2f} / {_ms(r)}" for r in soft)
         out.append(f"- Soft shadows, RMSE / time against the area-light reference: {seq}.")
-    timed = [r for r in hard if r["family"] != "floor"]
+    timed = [r for r in hard if r["family"] != "floor" and not math.isnan(r["time_ms"])]
     for key in ("misclassified", "rmse"):
+        if not timed:
+            break
         front = pareto([(r["time_ms"], r[key]) for r in timed])
         names = ", ".join(timed[i]["label"] for i in sorted(front,
                                                              key=lambda i: timed[i]["time_ms"]))
@@ -130,25 +206,46 @@ def _fmt(v):
 HEADER = """# Shadow study, part 1: error against run time
 
 Every shadow method of the seed papers run through the emulator with IRIS GL
-calls, measured against an exact float64 ray-cast reference on two scenes.
+calls, measured against an exact float64 ray-cast reference on {scenes}.
 
 Regenerate this page, its results and pictures with one command (a progress bar
-is written on standard error):
+is written on standard error; the study at scale, on Dask, resumable, with
+scene files and the big sweep: [shadow-study-at-scale.md](shadow-study-at-scale.md)):
 
 ```sh
-{cmd}            # or: vgx-study (after pip install -e '.[plots]')
-{cmd} --quick    # a reduced sweep at 160 x 120, into a temporary directory
+{cmd} --docs     # or: vgx-study --docs (after pip install -e '.[plots]')
+{cmd} --quick    # a reduced sweep at 160 x 120, into out/study-quick/ only
 ```
 
-Results: `shadow-study/results.json`{quick}.  Images are {w} x {h} pixels; light
-maps 64 to 4096 square (drawn in tiles of at most 1024 x 1024, each an `ortho`
-sub-box of the light's box, because the virtual screen is 1280 x 1024).  Times:
-median of up to {repeats} warm runs after an untimed one, fewer when the runs
-of a configuration pass {budget:g} s ("runs" column).  The machine is shared, so
-times carry its load (see the load averages below); the emulator's numba kernels
-ran with the number of threads in the table (`--threads`, default 1: with 2
-threads on this 2-core machine the same run took from 1x to 3x as long
-depending on the other users' load).
+Results: `{rel}/results.json`{quick}.  Images are {w} x {h} pixels; light
+maps {lo} to {hi} square (beyond {tile} x {tile}, the largest light window, drawn
+and tested tile by tile, each an `ortho` sub-box of the light's box, because
+the virtual screen is 1280 x 1024).  Times: median of up to {repeats} warm runs
+after an untimed one, fewer when the runs of a configuration pass {budget:g} s
+("runs" column), taken in a timing phase of their own (below).
+"""
+
+TIMING = """
+## How the times were taken
+
+Errors and pictures are deterministic: they come out the same in any process
+on any machine, and are computed first (the error phase).  Times are not: they
+come from a separate timing phase after it, one configuration per task, each
+task alone on its worker and at most cores / threads timing tasks per host at a
+time, so a timed run shares its core with nothing else of the sweep; the
+emulator's numba kernels ran with {threads} thread(s) (`--threads`).  Each
+task makes an untimed warm-up run, a run under `tracemalloc` (the memory
+column), then up to {repeats} timed runs.  Every time is recorded with its
+host, CPU, numba threads and the 1, 5 and 15-minute load averages before and
+after (`results.json`, `<scene>/<key>.time.json`): the machine may be shared,
+and a load above its cores means the times carry other users' work.  Times
+from different machines are never compared with each other: the findings,
+Pareto fronts and plots use the times of one machine only.
+"""
+
+SEEDS = """The jittered configurations (soft shadows: the light's N directions; dithered
+maps: the dither noise) were run with several seeds (`--seeds`); the tables
+above show the mean over the seeds, this one the spread.
 """
 
 MEASURES = """
@@ -203,6 +300,13 @@ LIMITS = """
   every image rounds the same way each time, so the error does not average
   out and reaches up to 1/(2v) levels after the return (about 1 level at
   N = 256): compare N = 128 and N = 256 in the soft tables.
+- A light map larger than the light window is tested tile by tile: each eye
+  point against the tile its nearest texel lies in, drawn with a border as wide
+  as the bilinear and PCF neighbourhoods, so the decisions are those of one big
+  map (tests/test_study_scale.py) and memory stays one tile whatever the
+  resolution.  A tile's depths can differ from one big window's by one z unit
+  at a few texels (the rasterizer's z plane is anchored at the scissored box's
+  corner), which changes a decision only within one z unit of the bias.
 - Times include the emulator's Python front end (one `v3f` per vertex of the
   shadow-volume faces, display lists for the scene) and the numba kernels; they
   rank the methods on this emulator, not on a 1990 VGX.
