@@ -58,7 +58,8 @@ def segments_for(w, x, y, r, sweep=3600):
     [MIN_SEGMENTS, MAX_SEGMENTS], and an arc its share (at least 1)."""
     rp = _screen_radius(w, x, y, r)
     if rp > SAGITTA:
-        n = math.ceil(math.pi / math.acos(1.0 - SAGITTA / rp))
+        a = math.acos(1.0 - SAGITTA / rp)     # 0 for a radius of 1e38 pixels
+        n = math.ceil(math.pi / a) if a > 0 else MAX_SEGMENTS
     else:
         n = MIN_SEGMENTS
     n = min(max(n, MIN_SEGMENTS), MAX_SEGMENTS)

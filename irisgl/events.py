@@ -152,7 +152,9 @@ def qcontrol(cmd, icnt, idata, ocnt, odata=None):
     integer("qcontrol", cmd, "cmd")
     for c, a, what in ((icnt, idata, "idata"), (ocnt, odata, "odata")):
         c = integer("qcontrol", c, f"count of {what}")
-        if c < 0 or (c and (a is None or len(a) < c)):
+        if c and not hasattr(a, "__len__"):
+            fail("qcontrol", f"{what} is not an array", "pass an array of shorts or NULL (0)")
+        if c < 0 or (c and len(a) < c):
             fail("qcontrol", f"{what} holds fewer than {c} elements",
                  "counts must not exceed the arrays")
     return -errno.EINVAL

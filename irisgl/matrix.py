@@ -25,10 +25,14 @@ _MODES = {K.MSINGLE: "MSINGLE", K.MPROJECTION: "MPROJECTION", K.MVIEWING: "MVIEW
 
 
 def _matrix_arg(call, m):
+    """A C ``Matrix`` (float[4][4]): 16 numbers read in C's row-major order,
+    so a flat list of 16 (the same memory) is accepted too (docs/decisions.md)."""
     try:
         a = np.array(m, dtype=np.float64)
     except (TypeError, ValueError):
         fail(call, "matrix is not numeric", "pass a 4x4 array of numbers")
+    if a.ndim == 0:
+        fail(call, f"matrix {m!r} is not an array", "pass a 4x4 array of numbers")
     if a.size != 16:
         fail(call, f"matrix has {a.size} elements", "a Matrix is 4x4 (16 floats)")
     return a.reshape(4, 4)

@@ -5,6 +5,7 @@ from vgx_emulator.errors import fail
 
 from . import constants as K
 from ._current import glcall, integer, machine, num, token, win
+from ._current import words as _words
 
 __all__ = ["readsource", "lrectread", "rectread", "lrectwrite", "rectwrite", "rectcopy",
            "rectzoom"]
@@ -131,12 +132,12 @@ def _write(call, x1, y1, x2, y2, parray, dtype):
         a = np.asarray(parray)
     except (TypeError, ValueError):
         a = None
-    if a is None or not (a.dtype.kind in "iub" or (a.dtype == object and all(
+    if a is None or a.ndim == 0 or not (a.dtype.kind in "iub" or (a.dtype == object and all(
             isinstance(v, (int, np.integer)) for v in a.reshape(-1)))):
         fail(call, "parray is not an array of integer pixel words",
              f"{h * wd} {'32' if dtype == np.uint32 else '16'}-bit words (C: "
              f"{'unsigned long' if dtype == np.uint32 else 'unsigned short'}), no floats")
-    words = a.astype(np.int64) & (0xFFFFFFFF if dtype == np.uint32 else 0xFFFF)
+    words = _words(a, 0xFFFFFFFF if dtype == np.uint32 else 0xFFFF)
     if words.size < h * wd:
         fail(call, f"parray has {words.size} elements", f"(x2-x1+1)*(y2-y1+1) = {h * wd}")
     # a longer C array is read from its first elements

@@ -14,6 +14,7 @@ from vgx_emulator.errors import fail
 from . import constants as K
 from ._current import (HEADLESS, boolean, glcall, integer, machine, not_emulated, num,
                        token, ulong, win)
+from ._current import words as _words
 
 __all__ = ["ringbell", "setbell", "blanktime", "blankscreen", "clkon", "clkoff", "lampon",
            "lampoff", "dbtext", "setdblights", "setvideo", "getvideo", "videocmd",
@@ -97,13 +98,15 @@ def _lamps(call, lamps):
 @glcall(immediate=True, status=HEADLESS, why=_PHYS)
 def lampon(lamps):
     """lampon(3G): turn on the keyboard lamps in the 4-bit mask."""
-    _keep("lamps", _sys("lamps", 0) | _lamps("lampon", lamps))
+    on = _lamps("lampon", lamps)
+    _keep("lamps", _sys("lamps", 0) | on)
 
 
 @glcall(immediate=True, status=HEADLESS, why=_PHYS)
 def lampoff(lamps):
     """lampoff(3G): turn off the keyboard lamps in the 4-bit mask."""
-    _keep("lamps", _sys("lamps", 0) & ~_lamps("lampoff", lamps))
+    off = _lamps("lampoff", lamps)
+    _keep("lamps", _sys("lamps", 0) & ~off)
 
 
 @glcall(immediate=True, status=HEADLESS, why=_PHYS)
@@ -463,7 +466,7 @@ def _row(call, a, n, what, mask):
         arr = np.asarray(a).reshape(-1)
         if arr.size < n:
             fail(call, f"{what} has {arr.size} elements", f"n = {n}")
-        return arr[:n].astype(np.int64) & mask
+        return _words(arr[:n], mask)
     except (TypeError, ValueError):
         fail(call, f"{what} is not an array of integers", f"{n} values")
 

@@ -97,3 +97,75 @@ def test_a_damaged_cache_is_compiled_again_not_fatal(tmp_path):
     again = _draw(tmp_path)
     assert again.returncode == 0, again.stderr[-2000:]
     assert again.stdout == first.stdout
+
+
+READ_ONLY = r"""
+import builtins, os, sys, tempfile
+CACHE = os.environ["NUMBA_CACHE_DIR"]
+_open = builtins.open
+
+
+def read_only_open(f, mode="r", *a, **k):
+    # a read-only cache (root is not stopped by file modes): nothing under it is written
+    if any(c in mode for c in "wax+") and os.path.abspath(str(f)).startswith(CACHE):
+        raise PermissionError(30, "Read-only file system", str(f))
+    return _open(f, mode, *a, **k)
+
+
+def no_place(*a, **k):
+    # nowhere writable at all: every cache locator numba tries fails
+    raise PermissionError(30, "Read-only file system")
+
+
+builtins.open = read_only_open
+if sys.argv[1] == "nowhere":
+    tempfile.TemporaryFile = no_place
+import warnings
+warnings.simplefilter("always")
+"""
+
+MORE = r"""
+blendfunction(BF_SA, BF_MSA); rectf(4, 4, 9, 9); gflush()      # a kernel not cached yet
+print(int(lrectread(5, 5, 5, 5)[0, 0]))
+"""
+
+
+def _read_only(cache_dir, how):
+    import os
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache_dir))
+    return subprocess.run([sys.executable, "-c", READ_ONLY + DRAW + MORE, how],
+                          capture_output=True, text=True, timeout=900, env=env)
+
+
+def test_a_read_only_cache_is_used_and_never_stops_a_run(tmp_path):
+    """A cache that cannot be written: kernels in it are loaded, a kernel not
+    in it is compiled and not saved, with one warning (numba raised
+    PermissionError from the first new kernel)."""
+    first = _draw(tmp_path)
+    assert first.returncode == 0, first.stderr
+    r = _read_only(tmp_path, "read-only")
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.split("\n")[0] == first.stdout.strip()
+    assert r.stderr.count("VGXWarning: numba cache: cannot write") == 1
+
+
+def test_no_writable_place_for_a_cache_never_stops_a_run(tmp_path):
+    """No cache directory can be written anywhere (a read-only install and
+    home): the kernels are compiled without a cache, with one warning (numba
+    raised RuntimeError 'no locator available' at import)."""
+    r = _read_only(tmp_path, "nowhere")
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.split("\n")[0] == _draw(tmp_path).stdout.strip()
+    assert r.stderr.count("VGXWarning: numba cache:") == 1
+
+
+def test_a_damaged_cache_warns_once(tmp_path):
+    """Every cache file garbled: one warning for the whole run."""
+    assert _draw(tmp_path).returncode == 0
+    for p in tmp_path.rglob("*.nb[ic]"):
+        p.write_bytes(b"\x80garbage")
+    env_run = subprocess.run([sys.executable, "-W", "always", "-c", DRAW], capture_output=True,
+                             text=True, timeout=900,
+                             env=dict(__import__("os").environ, NUMBA_CACHE_DIR=str(tmp_path)))
+    assert env_run.returncode == 0, env_run.stderr[-2000:]
+    assert env_run.stderr.count("VGXWarning: numba cache: damaged") == 1

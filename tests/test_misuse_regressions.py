@@ -198,3 +198,144 @@ def test_dropped_primitive_warning_names_the_call_that_drew_it(open_window):
         endpolygon()
         gflush()
     assert [str(x.message).split(":")[0] for x in w] == ["v*/n3f/c*/t*"]
+
+
+# -- issue 19, second part: found by vgx_emulator.fuzz ------------------------
+def _snapshot():
+    """Matrices, modes and banks of the current window, the machine's
+    definitions and its physical state, for 'state unchanged' checks."""
+    from vgx_emulator.fuzz import fingerprint
+    return fingerprint(machine)
+
+
+@pytest.mark.parametrize("call", [lambda: circ(0, 0, 1e38), lambda: arc(0, 0, 1e38, 0, 900),
+                                  lambda: circf(0, 0, 3e38), lambda: arcf(0, 0, 1e38, 0, 900)])
+def test_a_huge_radius_draws_at_most_the_largest_circle(open_window, call):
+    """circ(3G) of radius 1e38 (far beyond the screen): chords are counted
+    as for the largest circle, not a ZeroDivisionError."""
+    open_window(16, 16)
+    call()
+    gflush()
+
+
+NONFINITE = [float("nan"), float("inf"), -float("inf"), 1e38, -1e38, 3e38]
+
+
+def _all_kinds(v):
+    """Every primitive kind, once with a vertex holding v and once with w = v."""
+    kinds = [(bgnpoint, endpoint), (bgnline, endline), (bgnclosedline, endclosedline),
+             (bgnpolygon, endpolygon), (bgntmesh, endtmesh), (bgnqstrip, endqstrip)]
+    for bgn, end in kinds:
+        for bad in ([v, 0.3, 0, 1], [0.2, 0.1, 0, v], [0.5, 0.5, 0, -1.0], [0, 0, 0, 0.0]):
+            bgn()
+            n3f([0, 0, 1])
+            for p in ([0, 0, 0, 1], [1, 0, 0, 1], bad, [0, 1, 0, 1]):
+                c4f([1, v if bad[0] == v else 0, 0, 1])
+                v4f(p)
+            end()
+            gflush()
+    for draw2d in (lambda: rectf(0, 0, v, 1), lambda: sboxf(0, 0, v, 1),
+                   lambda: polf(3, [[0, 0, 0], [v, 1, 0], [1, 0, 0]]), lambda: pnt(v, 0, 0),
+                   lambda: (move(0, 0, 0), draw(v, 1, 0)), lambda: circ(0, 0, v)):
+        try:
+            draw2d()
+        except GLError:
+            pass
+        gflush()
+
+
+@pytest.mark.parametrize("lit", [False, True])
+def test_nonfinite_geometry_gives_no_numpy_warning(open_window, lit):
+    """NaN, infinities, 1e38 and w <= 0 through every primitive kind, with
+    every warning an error: only VGXWarnings (porting conventions 5), never
+    numpy's RuntimeWarning (sboxf(inf) gave 'invalid value in matmul')."""
+    import warnings
+    from vgx_emulator.errors import VGXWarning
+    open_window(32, 32)
+    mmode(MVIEWING)
+    perspective(400, 1, 1, 50)
+    lookat(0, 0, 5, 0, 0, 0, 0)
+    zbuffer(TRUE)
+    if lit:
+        lmdef(DEFMATERIAL, 1, 0, [LMNULL])
+        lmdef(DEFLIGHT, 1, 0, [LMNULL])
+        lmdef(DEFLMODEL, 1, 0, [LMNULL])
+        lmbind(MATERIAL, 1)
+        lmbind(LIGHT0, 1)
+        lmbind(LMODEL, 1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        warnings.simplefilter("ignore", VGXWarning)
+        for v in NONFINITE:
+            _all_kinds(v)
+
+
+def test_one_warning_per_dropped_batch_naming_the_call_and_value(open_window):
+    """Three bad rectangles in one batch: one VGXWarning, naming rectf and
+    the first offending value."""
+    import warnings
+    open_window(16, 16)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        rectf(0, 0, float("inf"), 5)
+        rectf(0, 0, float("nan"), 5)
+        rectf(0, 0, 1, 1)
+        rectf(0, 0, float("nan"), 5)
+        gflush()
+    assert len(w) == 1
+    msg = str(w[0].message)
+    assert msg.startswith("rectf: ") and msg.endswith("first: vertex (inf, 0, 0, 1)")
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: lrectwrite(0, 0, 0, 0, 2 ** 70), "lrectwrite"),
+    (lambda: rectwrite(0, 0, 0, 0, 2 ** 70), "rectwrite"),
+    (lambda: texdef2d(1, 1, 1, 1, 2 ** 70, 0, [0]), "texdef2d"),
+    (lambda: qcontrol(1, 1, object(), 0), "qcontrol"),
+    (lambda: winmove(2 ** 70, 1), "winmove"),
+    (lambda: winposition(2 ** 40, 2 ** 40 + 10, 0, 10), "winposition"),
+    (lambda: lampon(None), "lampon"),
+    (lambda: lampoff("abc"), "lampoff"),
+])
+def test_fuzzed_misuse_is_a_glerror_with_the_state_unchanged(open_window, call, name):
+    """Found by the misuse fuzz: OverflowError (a 2**70 pixel word, window
+    origin or texture word), TypeError (qcontrol of an object), a lamp
+    state created by a refused call, loadmatrix(None) read as a 1-element matrix."""
+    open_window(8, 8)
+    cpack(0xFF123456)
+    clear()
+    before = _snapshot()
+    with pytest.raises(GLError, match=f"^{name}: "):
+        call()
+    assert _snapshot() == before
+    rectf(0, 0, 3, 3)                  # the window still draws
+    gflush()
+
+
+def test_pixel_words_of_any_size_are_reduced_as_c_converts_them(open_window):
+    """A Python int beyond 32 bits in an lrectwrite or writeRGB array keeps
+    its low bits, as C's unsigned long / Colorindex conversion (Decision 13),
+    instead of an OverflowError."""
+    open_window(8, 8)
+    lrectwrite(0, 0, 1, 0, [2 ** 70 + 0xFF0000FF, 0xFF00FF00])
+    assert list(lrectread(0, 0, 1, 0).reshape(-1)) == [0xFF0000FF, 0xFF00FF00]
+    cmov2i(0, 1)
+    writeRGB(2, [2 ** 40 + 7, 8], [1, 2], [3, 4])
+    assert list(lrectread(0, 1, 1, 1).reshape(-1)) == [0xFF030107, 0xFF040208]
+
+
+def test_loadmatrix_reads_a_flat_16_as_c_memory(open_window):
+    """loadmatrix(3G) takes a Matrix, float[4][4]; a flat list of 16 is the
+    same memory in C's row-major order and loads the same matrix."""
+    open_window(8, 8)
+    m = [[1, 2, 3, 4], [5, 6, 7, 8], [9, 10, 11, 12], [13, 14, 15, 16]]
+    loadmatrix(sum(m, []))
+    flat = getmatrix().copy()
+    loadmatrix(m)
+    assert np.array_equal(flat, getmatrix())
+    with pytest.raises(GLError, match="^loadmatrix: matrix has 15 elements"):
+        loadmatrix(list(range(15)))
+    with pytest.raises(GLError, match="^loadmatrix: matrix None is not an array"):
+        loadmatrix(None)                # was 'matrix has 1 elements'
+    with pytest.raises(GLError, match="^multmatrix: matrix 2.0 is not an array"):
+        multmatrix(2.0)

@@ -46,24 +46,47 @@ def _skip_blas_probe():
 _skip_blas_probe()
 
 
+_cache_warned = []
+
+
+def cache_trouble(what):
+    """One VGXWarning per process the first time numba's disk cache cannot
+    be used; the kernels are compiled instead (issue 19: a cache never stops
+    a run)."""
+    if not _cache_warned:
+        import warnings
+        from .errors import VGXWarning
+        _cache_warned.append(what)
+        warnings.warn(f"numba cache: {what}; kernels are compiled in this process instead",
+                      VGXWarning, stacklevel=2)
+
+
 def _tolerate_damaged_cache():
-    """A damaged file in numba's disk cache (a truncated index, a garbled
-    data file: a disk filled up, two processes killed while writing) counts
-    as missing: the kernel is compiled again and the file written anew.
-    Without this, numba raises UnpicklingError (or EOFError ...) from every
-    later run that loads the file, and the emulator cannot start."""
-    from numba.core import caching
+    """A damaged, read-only or foreign numba disk cache never stops a run:
+
+    * a damaged file (a truncated index, a garbled data file: a disk filled
+      up, two processes killed while writing; a file of another numba) counts
+      as missing: the kernel is compiled again and the file written anew
+      (numba raised UnpicklingError, EOFError ... from every later run);
+    * a file that cannot be written (a read-only cache or install) is not
+      written: numba raised PermissionError from the first new kernel;
+    * no writable place for a cache at all: the kernel is not cached (numba
+      raised RuntimeError 'no locator available' at import).
+
+    Each warns once (:func:`cache_trouble`)."""
+    from numba.core import dispatcher
     cls = caching.IndexDataCacheFile
     if getattr(cls, "_vgx_tolerant", False):
         return
-    load_index, load_data = cls._load_index, cls._load_data
+    load_index, load_data, save = cls._load_index, cls._load_data, cls.save
 
     def _load_index(self):
         try:
             return load_index(self)
         except OSError:
             raise
-        except Exception:           # unreadable: as if there were no index yet
+        except Exception as e:      # unreadable: as if there were no index yet
+            cache_trouble(f"damaged index {self._index_path} ({type(e).__name__})")
             return {}
 
     def _load_data(self, name):
@@ -72,9 +95,27 @@ def _tolerate_damaged_cache():
         except OSError:
             raise
         except Exception as e:      # numba's load() treats OSError as a missing file
+            cache_trouble(f"damaged data file {name} ({type(e).__name__})")
             raise OSError(f"damaged numba cache file {name}: {e}") from e
 
-    cls._load_index, cls._load_data, cls._vgx_tolerant = _load_index, _load_data, True
+    def _save(self, key, data):
+        try:
+            return save(self, key, data)
+        except OSError as e:
+            cache_trouble(f"cannot write {self._index_path} ({e.strerror or e})")
+
+    enable = dispatcher.Dispatcher.enable_caching
+
+    def _enable_caching(self):
+        try:
+            enable(self)
+        except RuntimeError as e:   # no locator: nowhere to keep a cache
+            cache_trouble(str(e))
+            self._cache = caching.NullCache()
+
+    cls._load_index, cls._load_data, cls.save = _load_index, _load_data, _save
+    dispatcher.Dispatcher.enable_caching = _enable_caching
+    cls._vgx_tolerant = True
 
 
 _tolerate_damaged_cache()
@@ -132,8 +173,12 @@ def kernel(fn=None, *, variant=()):
     if fn is None:
         return lambda f: kernel(f, variant=variant)
     disp = numba.njit(**_opts)(fn)
-    if _opts.get("cache") and isinstance(disp, numba.core.registry.CPUDispatcher):
-        disp._cache = _KeyedCache(fn, KERNEL_SOURCE_HASH + repr(tuple(variant)))
+    if _opts.get("cache") and isinstance(disp, numba.core.registry.CPUDispatcher) and \
+            not isinstance(disp._cache, caching.NullCache):
+        try:
+            disp._cache = _KeyedCache(fn, KERNEL_SOURCE_HASH + repr(tuple(variant)))
+        except RuntimeError as e:   # no locator (see _tolerate_damaged_cache)
+            cache_trouble(str(e))
     return disp
 
 

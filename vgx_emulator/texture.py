@@ -121,6 +121,10 @@ def unpack_image(nc, width, height, image):
         if isinstance(image, (bytes, bytearray)):
             raw = np.frombuffer(bytes(image), np.uint8)
         else:
+            if a.ndim == 0:
+                raise ValueError("image is not an array")
+            if a.dtype == object:           # Python ints of any size: C's unsigned long
+                a = np.array([int(v) & 0xFFFFFFFF for v in a.reshape(-1)], np.int64)
             raw = a.astype(np.int64).astype(">u4").view(np.uint8).reshape(-1)
         stride = -(-width * nc // 4) * 4
         if raw.size < stride * height:

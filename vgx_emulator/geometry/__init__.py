@@ -342,8 +342,24 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     if work.dropped:
         warn(_callers(batch), f"{work.dropped} primitive(s) with a non-finite vertex, "
              "normal, colour, texture coordinate or transformed position (or one the "
-             "perspective divide cannot place) dropped")
+             f"perspective divide cannot place) dropped; first: "
+             f"{_offending(pos, attrs, clp, col, bad)}")
     return work
+
+
+def _offending(pos, attrs, clp, col, bad):
+    """The first offending value of a batch, for its warning: the first
+    vertex with a non-finite position, normal, colour or transformed value."""
+    idx = np.flatnonzero(bad)
+    if not len(idx):
+        return "a vertex the perspective divide cannot place (clip w = 0)"
+    i = idx[0]
+    for what, row in (("vertex", pos[i]), ("normal", attrs[i, 0:3]),
+                      ("colour", attrs[i, 3:7]), ("transformed vertex", clp[i]),
+                      ("lit colour", col[i])):
+        if not np.all(np.isfinite(row)):
+            return f"{what} ({', '.join(f'{float(v):g}' for v in row)})"
+    return "texture coordinate"
 
 
 def _window_rows(rows, vp, near_far, snap):

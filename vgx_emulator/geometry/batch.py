@@ -156,6 +156,12 @@ def _override(out, cols, use, values):
 
 
 class VertexBatch:
+    """One window's vertex stream (see the module docstring)."""
+
+    __slots__ = ("pos", "ev", "synced", "attrs", "owner", "open", "vblocks", "vbase",
+                 "xforms", "mats", "prims", "blocks", "swaps", "calls", "klass", "start",
+                 "dirty", "xf_dirty")
+
     def __init__(self):
         self.pos = []               # flat x, y, z, w after the last vertex block
         self.ev = []                # flat attribute events (EVW numbers) for ``pos``

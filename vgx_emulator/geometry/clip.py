@@ -52,7 +52,7 @@ def user_distances(eye4, planes):
     or None without planes."""
     if planes is None or len(planes) == 0:
         return None
-    return np.ascontiguousarray(eye4 @ np.asarray(planes, np.float64).T)
+    return np.ascontiguousarray(np.einsum("ni,ji->nj", eye4, np.asarray(planes, np.float64)))
 
 
 def outcodes(v, gx, gy, user=None):
