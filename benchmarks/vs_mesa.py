@@ -22,6 +22,10 @@ Workloads:
                   stencil is MYZERO.  The emulator runs the program's own
                   draw_scene(); Mesa replays the same algorithm with the faces
                   the program's shadow_faces() returns.
+  heidmann-immediate  the same program without --objects: every polygon and
+                  shadow face sent vertex by vertex in every frame (v3f, n3f);
+                  Mesa in immediate mode through PyOpenGL (glBegin, glNormal3f,
+                  glVertex3f/3fv, glEnd), the same faces.
   heidmann-soft   the program's figure 6 (five objects, one light): 32 jittered
                   light positions accumulated (acbuf / glAccum).
   shadowmap       the 5b scene's depth from each of its 4 lights into a
@@ -105,8 +109,8 @@ import programs.heidmann_shadow_volumes as hv  # noqa: E402
 import vgx_emulator  # noqa: E402
 from vgx_emulator.display.png import write_png  # noqa: E402
 
-WORKLOADS = ["spheres", "spheres-depth", "heidmann", "heidmann-soft", "shadowmap",
-             "fill-z", "fill-stencil", "cold"]
+WORKLOADS = ["spheres", "spheres-depth", "heidmann", "heidmann-immediate", "heidmann-soft",
+             "shadowmap", "fill-z", "fill-stencil", "cold"]
 SHADOWMAP_SIZE = 1024
 NQUADS = 32
 DIFF_THRESHOLD = 8
@@ -324,16 +328,17 @@ def emu_spheres(w, h, depth_only=False):
     return Side(frame, capture, **emu_matrices(spheres_view))
 
 
-def heidmann_opts(figure, w, h):
+def heidmann_opts(figure, w, h, objects=True):
     """The program's options, with --objects: its scene and shadow volumes
     recorded in IRIS GL objects on the untimed first frame, as the Mesa side
-    keeps them in display lists."""
-    return hv.parse(["--figure", figure, "--size", f"{w}x{h}", "--objects"])
+    keeps them in display lists (without: every vertex a v3f call in every
+    frame, as the Mesa side then sends glVertex3f)."""
+    return hv.parse(["--figure", figure, "--size", f"{w}x{h}"] + (["--objects"] if objects else []))
 
 
-def emu_heidmann(w, h, figure):
+def emu_heidmann(w, h, figure, objects=True):
     """The program's main() up to its event loop; frame = its draw_scene()."""
-    opts = heidmann_opts(figure, w, h)
+    opts = heidmann_opts(figure, w, h, objects)
     hv.setup(opts)
     emu_window(w, h, stencil_planes=getgdesc(GD_BITS_STENCIL), accum=opts.jitter > 1)
     subpixel(TRUE)
@@ -676,17 +681,30 @@ def gl_spheres(mesa, w, h, emu, depth_only=False):
     return GLSide(mesa, frame, capture, [lst])
 
 
-def volume_list(g, lpos):
+def volume_list(g, lpos, immediate=False):
     """The program's shadow faces for a light: ingoing ones with INCR, then
-    the others with DECR (DrawShadowVolumes' order), z-pass counting."""
+    the others with DECR (DrawShadowVolumes' order), z-pass counting.  A
+    display list, or (``immediate``) the function sending them with
+    glBegin/glVertex3fv/glEnd."""
     faces, ingo = hv.shadow_faces(np.asarray(lpos, float))
+    quads = [[f.tolist() for f in faces[sel]] for sel in (ingo, ~ingo)]
 
     def build():
         for sel, op in ((ingo, g.GL_INCR), (~ingo, g.GL_DECR)):
             g.glStencilOp(g.GL_KEEP, g.GL_KEEP, op)
             if sel.any():
                 gl_draw_arrays(g, g.GL_QUADS, faces[sel])
-    return gl_list(g, build)
+
+    def send():
+        v3 = g.glVertex3fv
+        for quad, op in zip(quads, (g.GL_INCR, g.GL_DECR)):
+            g.glStencilOp(g.GL_KEEP, g.GL_KEEP, op)
+            for f in quad:
+                g.glBegin(g.GL_POLYGON)
+                for v in f:
+                    v3(v)
+                g.glEnd()
+    return send if immediate else gl_list(g, build)
 
 
 def heidmann_light_positions(opts):
@@ -698,22 +716,28 @@ def heidmann_light_positions(opts):
     return [[b + o[j] for b, o in zip(base, offs)] for j in range(opts.jitter)]
 
 
-def gl_heidmann(mesa, w, h, emu):
+def gl_heidmann(mesa, w, h, emu, immediate=False):
     """Heidmann's listing replayed in GL with the program's scene, lights and
-    shadow faces.  zclear in the lit pass clears nothing (zwritemask is 0
-    then), so it has no GL counterpart."""
+    shadow faces, from display lists or (``immediate``) sent call by call in
+    every frame (glBegin/glNormal3f/glVertex3f).  zclear in the lit pass
+    clears nothing (zwritemask is 0 then), so it has no GL counterpart."""
     g = mesa.GL
     opts = emu.info["opts"]
     mesa.use(w, h)
     d = defs()
     model = d[DEFLMODEL][hv.LMODEL_INDEX]
     lights = [d[DEFLIGHT][lt.index] for lt in hv.light]
-    amb = gl_list(g, lambda: gl_polygons(g, hv.objects, [d[DEFMATERIAL][o.matl[0]]
-                                                         for o in hv.objects]))
-    lit = gl_list(g, lambda: gl_polygons(g, hv.objects, [d[DEFMATERIAL][o.matl[1]]
-                                                         for o in hv.objects]))
+
+    def scene(k):
+        def send():
+            gl_polygons(g, hv.objects, [d[DEFMATERIAL][o.matl[k]] for o in hv.objects])
+        return send if immediate else gl_list(g, send)
+    amb, lit = scene(0), scene(1)
     positions = heidmann_light_positions(opts)
-    vols = [[volume_list(g, p) for p in frame_pos] for frame_pos in positions]
+    vols = [[volume_list(g, p, immediate) for p in frame_pos] for frame_pos in positions]
+
+    def call(x):
+        x() if immediate else g.glCallList(x)
     gl_load(g, emu.info["proj"], emu.info["view"])
     gl_light_model(g, model)
     g.glEnable(g.GL_DEPTH_TEST)
@@ -726,7 +750,7 @@ def gl_heidmann(mesa, w, h, emu):
         g.glDisable(g.GL_BLEND)
         for i, lt in enumerate(lights):               # ambient pass, all lights on
             gl_light(g, i, lt, model, (*positions[j][i], 1.0))
-        g.glCallList(amb)
+        call(amb)
         for i in range(1, len(lights)):
             g.glDisable(g.GL_LIGHT0 + i)
         for i, lt in enumerate(lights):
@@ -737,14 +761,14 @@ def gl_heidmann(mesa, w, h, emu):
             g.glColorMask(0, 0, 0, 0)
             g.glEnable(g.GL_STENCIL_TEST)
             g.glStencilFunc(g.GL_ALWAYS, 0, 0xFF)
-            g.glCallList(vols[j][i])
+            call(vols[j][i])
             g.glDepthMask(1)
             g.glColorMask(1, 1, 1, 1)
             g.glEnable(g.GL_BLEND)
             g.glBlendFunc(g.GL_ONE, g.GL_ONE)
             g.glStencilFunc(g.GL_EQUAL, hv.MYZERO, 0xFF)
             g.glStencilOp(g.GL_KEEP, g.GL_KEEP, g.GL_KEEP)
-            g.glCallList(lit)
+            call(lit)
         g.glDisable(g.GL_STENCIL_TEST)
         g.glDisable(g.GL_BLEND)
 
@@ -759,7 +783,7 @@ def gl_heidmann(mesa, w, h, emu):
 
     mesa.check("gl_heidmann")
     return GLSide(mesa, frame, lambda: ("rgb", mesa.rgb()),
-                  [amb, lit] + [v for fr in vols for v in fr])
+                  [] if immediate else [amb, lit] + [v for fr in vols for v in fr])
 
 
 def gl_shadowmap(mesa, views, objs, emu):
@@ -829,9 +853,10 @@ def build_pair(name, mesa, w, h):
         depth = name == "spheres-depth"
         emu = emu_spheres(w, h, depth)
         return emu, gl_spheres(mesa, w, h, emu, depth)
-    if name in ("heidmann", "heidmann-soft"):
-        emu = emu_heidmann(w, h, "5b" if name == "heidmann" else "6")
-        return emu, gl_heidmann(mesa, w, h, emu)
+    if name in ("heidmann", "heidmann-soft", "heidmann-immediate"):
+        imm = name == "heidmann-immediate"
+        emu = emu_heidmann(w, h, "6" if name == "heidmann-soft" else "5b", objects=not imm)
+        return emu, gl_heidmann(mesa, w, h, emu, immediate=imm)
     if name == "shadowmap":
         objs, views = shadowmap_views()
         emu = emu_shadowmap(views, objs)

@@ -472,21 +472,26 @@ class VGX:
         at its end (docs/decisions.md): it is not drawn, and the pair is
         closed."""
         b = win.batch
-        name = call[3:]
-        if b.open is None or b.open[0] != kind:
-            inside = f"inside {b.open[1]}" if b.open else "not inside any bgn call"
-            fail(call, inside, f"end{name} closes bgn{name}")
+        o = b.open
+        if o is None or o[0] != kind:
+            name = call[3:]
+            fail(call, f"inside {o[1]}" if o else "not inside any bgn call",
+                 f"end{name} closes bgn{name}")
         nverts = b.vbase + (len(b.pos) >> 2)
         n = nverts - b.start
-        if kind == POLYGON and n > config.MAX_POLYGON_VERTICES:
-            b.drop_open_primitive()
-            self._close(win, b)
-            fail(call, f"{n} vertices in a polygon",
-                 f"at most {config.MAX_POLYGON_VERTICES} (GD_NVERTEX_POLY); it is not drawn")
-        while kind == TMESH and b.swaps and b.swaps[-1] >= nverts:
-            b.swaps.pop()                 # a swap after the last vertex swaps nothing
-        if n:
-            b.prims += (kind, b.start, n, kind == POLYGON and win.st.concave)
+        if kind == POLYGON:
+            if n > config.MAX_POLYGON_VERTICES:
+                b.drop_open_primitive()
+                self._close(win, b)
+                fail(call, f"{n} vertices in a polygon",
+                     f"at most {config.MAX_POLYGON_VERTICES} (GD_NVERTEX_POLY); it is not drawn")
+            if n:
+                b.prims += (kind, b.start, n, win.st.concave)
+        else:
+            while kind == TMESH and b.swaps and b.swaps[-1] >= nverts:
+                b.swaps.pop()             # a swap after the last vertex swaps nothing
+            if n:
+                b.prims += (kind, b.start, n, False)
         b.open = None
         if win is self.W:
             self.V = _closed

@@ -16,10 +16,40 @@ from .raster.stencil import ST_KEEP
 SCRBOX_EMPTY = (1 << 30, -(1 << 30), 1 << 30, -(1 << 30))
 
 
+def _current_attribute(name, doc):
+    """A current vertex attribute.  irisgl's per-vertex calls (n3f, c*, cpack,
+    RGBcolor, t*) do not write it: they append an event to the window's
+    batch (geometry/batch.py), and reading or writing the attribute first
+    takes the newest value from those events (``VertexBatch.sync``)."""
+    slot = "_" + name
+
+    def get(self):
+        b = self.events
+        if b is not None and b.synced != len(b.ev):
+            b.sync(self)
+        return self.__dict__[slot]
+
+    def put(self, value):
+        b = self.events
+        if b is not None and b.synced != len(b.ev):
+            b.sync(self)
+        self.__dict__[slot] = value
+    return property(get, put, doc=doc)
+
+
 class WindowState:
     """Everything a window remembers between calls (one graphics context)."""
 
+    colour = _current_attribute("colour", "RGBA 0..255, or (index, 0, 0, 0)")
+    normal = _current_attribute("normal", "n3f(3G): nx, ny, nz")
+    texcoord = _current_attribute("texcoord", "t*(3G): s, t, r, q")
+    last_was_normal = _current_attribute(
+        "last_was_normal", "whether n3f came after the last colour call (lmcolor(3G))")
+    colour_since_bind = _current_attribute(
+        "colour_since_bind", "a colour call since the material was bound (lmcolor(3G))")
+
     def __init__(self, width, height):
+        self.events = None             # the batch whose events may hold newer attributes
         # configuration requests, effective at gconfig()
         self.req_rgb = False
         self.req_double = False
