@@ -123,6 +123,12 @@ def _points(rng, n, special):
     return pts
 
 
+#: what each primitive kind of Drawer._primitive draws
+KIND_NAMES = ("bgnpoint", "bgnline", "bgnclosedline", "bgnpolygon", "bgntmesh", "bgnqstrip",
+              "rectf", "circf", "move/draw", "polf", "pnt", "lrectwrite", "bgnpolygon",
+              "bgntmesh", "rectcopy")
+
+
 class Drawer:
     """One batch of the drawing fuzz (module docstring)."""
 
@@ -306,7 +312,7 @@ class Drawer:
                  (gl.bgnclosedline, gl.endclosedline, 2, 6),
                  (gl.bgnpolygon, gl.endpolygon, 3, 8), (gl.bgntmesh, gl.endtmesh, 3, 10),
                  (gl.bgnqstrip, gl.endqstrip, 4, 10))
-        self.stats[f"kind{k}"] += 1
+        self.stats[KIND_NAMES[k]] += 1
         if k < 6 or k in (12, 13):
             bgn, end, lo, hi = kinds[k % 6] if k < 6 else kinds[3 + (k - 12)]
             n = int(rng.integers(lo, hi + 1))
@@ -365,8 +371,8 @@ class Drawer:
         for _ in range(n):
             try:
                 self._primitive(recipe, w, h, special)
-            except self.gl.GLError:
-                self.stats["glerrors"] += 1
+            except self.gl.GLError as e:
+                self.stats["GLError " + str(e).split(";")[0]] += 1
             if rng.random() < 0.02:
                 gl.clear()
             if rng.random() < 0.05:
