@@ -71,8 +71,10 @@ class DaskPool:
     ``scheduler`` (an address), else a LocalCluster of ``workers``
     processes with one thread each (each process its own emulator)."""
 
-    def __init__(self, workers=None, scheduler=None, client=None, dashboard=True):
+    def __init__(self, workers=None, scheduler=None, client=None):
         distributed = need_dask()
+        import importlib.util
+        dashboard = importlib.util.find_spec("bokeh") is not None    # Dask's own display
         self.cluster = None
         self.own = client is None
         if client is not None:
@@ -156,8 +158,8 @@ class DaskPool:
                 self.cluster.close()
 
 
-def make_pool(workers=None, scheduler=None, client=None, dashboard=True):
+def make_pool(workers=None, scheduler=None, client=None):
     """SerialPool without workers, scheduler or client; else a DaskPool."""
     if client is None and scheduler is None and not workers:
         return SerialPool()
-    return DaskPool(workers, scheduler, client, dashboard)
+    return DaskPool(workers, scheduler, client)

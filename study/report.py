@@ -84,7 +84,7 @@ def run(scene_names=("A", "B"), size=(320, 240), quick=False, out_dir=None, md_p
                 "scenes": {n: _digest(s) for n, s in specs.items()}, "max_tile": int(max_tile),
                 "repeats": int(repeats), "budget_s": float(budget), "threads": int(threads)}
     store = Store(out_dir, settings, resume)
-    pool = make_pool(workers, scheduler, client, dashboard=stream is not None)
+    pool = make_pool(workers, scheduler, client)
     t0 = time.perf_counter()
     meta = machine_info(threads)
     try:
