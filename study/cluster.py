@@ -84,7 +84,7 @@ class DaskPool:
         else:
             self.cluster = distributed.LocalCluster(
                 n_workers=int(workers), threads_per_worker=1, processes=True,
-                dashboard_address=":0" if dashboard else None)
+                dashboard_address=":0")
             self.client = distributed.Client(self.cluster)
         n = len(self.workers())
         kind = ("LocalCluster" if self.cluster is not None

@@ -1,0 +1,104 @@
+"""The shadow study on Dask: a LocalCluster of two worker processes gives
+the serial run's records, images and pictures; a worker killed during the
+sweep loses no configuration; timing slots; ``vgx-study --workers``.
+Skipped without dask.distributed (the ``[cluster]`` extra; ``[test]``
+installs it)."""
+import os
+import signal
+
+import pytest
+
+distributed = pytest.importorskip("distributed")
+
+from study import __main__ as cli  # noqa: E402
+from study import report  # noqa: E402
+from study.cluster import DaskPool  # noqa: E402
+from test_study_scale import SIZE, FAILING, records, same_results, tiny_configs, tiny_file  # noqa: E402,E501
+
+
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=None)
+    c = distributed.Client(cluster)
+    yield c
+    c.close()
+    cluster.close()
+
+
+@pytest.fixture(scope="module")
+def serial(tmp_path_factory):
+    root = tmp_path_factory.mktemp("serial")
+    out = root / "out"
+    report.run((tiny_file(root),), SIZE, out_dir=out, repeats=1, budget=1.0,
+               cfgs=tiny_configs(), stream=None)
+    return out, root
+
+
+def _run(root, out, client, **kw):
+    return report.run((tiny_file(root),), SIZE, out_dir=out, repeats=1, budget=1.0,
+                      cfgs=tiny_configs(), stream=None, client=client, **kw)
+
+
+def test_the_parallel_sweep_equals_the_serial_one(serial, client, tmp_path):
+    """Every record (measures, the failure and its error), image, decision
+    and picture of the run on two worker processes is the serial run's;
+    the tasks ran on the workers, each configuration timed on one."""
+    whole, root = serial
+    out = tmp_path / "par"
+    res = _run(root, out, client)
+    same_results(out, whole)
+    recs = records(out)
+    ran_on = {r["where"]["worker"] for r in recs.values() if r["status"] == "ok" and
+              r.get("where")}
+    assert ran_on and "serial" not in ran_on
+    assert recs[FAILING.key]["status"] == "error"
+    assert "Dask" in res["meta"]["engine"]
+    timed = res["timing"]["machines"][res["timing"]["compared on"]]
+    assert timed["rows"] == len(res["scenes"]["T"]["rows"]) - 1      # all but the floor
+    assert timed["slots"] == [len(DaskPool(client=client).timing_slots(1))]
+
+
+def test_a_worker_killed_during_the_sweep_loses_nothing(serial, client, tmp_path):
+    """At the first record, the worker process running a task is killed
+    (SIGKILL); Dask runs its tasks again and the folder ends as the serial
+    run's, with every configuration."""
+    whole, root = serial
+    killed = []
+
+    def kill(scene, key, rec):
+        if killed:
+            return
+        busy = [w for w, keys in client.processing().items() if keys]
+        assert busy, "no task in progress to kill"
+        pid = client.run(os.getpid, workers=busy[:1])[busy[0]]
+        os.kill(pid, signal.SIGKILL)
+        killed.append(pid)
+    out = tmp_path / "killed"
+    _run(root, out, client, on_record=kill)
+    assert killed
+    same_results(out, whole)
+    client.wait_for_workers(2, timeout=60)             # the nanny brought it back
+
+
+def test_timing_slots_keep_one_task_per_core(client):
+    """Two one-thread workers on one host: one slot each while cores allow,
+    never more than cores / threads."""
+    pool = DaskPool(client=client)
+    cores = os.cpu_count()
+    assert len(pool.timing_slots(1)) == min(2, cores)
+    assert len(pool.timing_slots(cores)) == 1
+    assert pool.spare_slot(set(pool.workers())) is None
+
+
+def test_vgx_study_workers(tmp_path):
+    """``vgx-study --workers 2`` starts its LocalCluster, runs there, and
+    writes the same records as the serial command."""
+    scene = tiny_file(tmp_path)
+    args = ["--scenes", scene, "--size", "32x24", "--methods", "planar", "volumes", "--quick",
+            "--repeats", "1"]
+    cli.main(args + ["--out", str(tmp_path / "one")])
+    cli.main(args + ["--out", str(tmp_path / "two"), "--workers", "2"])
+    same_results(tmp_path / "two", tmp_path / "one")
+    recs = records(tmp_path / "two")
+    assert {r["where"]["worker"] for r in recs.values()} <= {"0", "1"}
