@@ -163,52 +163,82 @@ def _timed_run(prog, fig, anim):
     return img, frames, sum(spent)
 
 
-def render(outdir, folder, only=None):
+def render(outdir, folder, only=None, workers=None):
     """Render the figures (``only``: those whose program/name contains one
     of these strings) into ``outdir`` with index.html and a page per figure;
-    return the [Row]."""
+    return the [Row].  ``workers``: render in that many worker processes
+    (each its own machine), the rows still in gallery order."""
     outdir = Path(outdir)
     outdir.mkdir(parents=True, exist_ok=True)
     items = collect(folder)
     if only:
         items = [(p, f, s) for p, f, s in items
                  if any(o in f"{p.stem}/{f['name']}" for o in only)]
-    rows = []
     t0 = time.perf_counter()
     bar = Progress(len(items))
-    for prog, fig, section in items:
-        bar.show(f"{prog.stem}: {fig['name']}")
-        t = time.perf_counter()
-        err, compiled = None, 0.0
-        anim = fig.get("animate") or ANIMATIONS.get((prog.stem, fig["name"]))
-        stem = _stem(prog, fig)
-        try:
-            img, frames, compiled = _timed_run(prog, fig, anim)
-        except Exception as e:          # a broken figure must not stop the gallery
-            img, frames, err = None, None, f"{type(e).__name__}: {e}"
-        dt = time.perf_counter() - t - compiled
-        fname = stem + ".png"
-        if img is not None:
-            try:
-                write_png(outdir / fname, img)
-                fig = dict(fig, _size=(img.shape[1], img.shape[0]))
-            except Exception as e:      # a figure it cannot write is reported, not fatal
-                img, err = None, f"cannot write {outdir / fname}: {type(e).__name__}: {e}"
-        elif err is None:
-            err = "the program opened no window"
-        if frames and img is not None:
-            try:
-                write_gif(outdir / (stem + ".gif"), frames,
-                          30.0 if anim.get("at") != "acbuf" else 8.0, anim.get("every", 1))
-                fig = dict(fig, _gif=stem + ".gif")
-            except Exception as e:
-                err = f"cannot write {outdir / (stem + '.gif')}: {type(e).__name__}: {e}"
-        rows.append(Row(prog, fig, fname if img is not None else None, dt, err, section,
-                        compiled))
-        bar.step(f"{prog.stem}: {fig['name']}")
+    if workers and workers > 1 and len(items) > 1:
+        rows = _render_parallel(outdir, items, workers, bar)
+    else:
+        rows = []
+        for prog, fig, section in items:
+            bar.show(f"{prog.stem}: {fig['name']}")
+            rows.append(render_one(outdir, prog, fig, section))
+            bar.step(f"{prog.stem}: {fig['name']}")
     bar.close()
     write_pages(outdir, rows, time.perf_counter() - t0)
     return rows
+
+
+def _render_parallel(outdir, items, workers, bar):
+    """render_one of every item in a pool of worker processes; a process
+    that dies fails its figure, the others go on."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+    rows = [None] * len(items)
+    ctx = multiprocessing.get_context("spawn")        # a fresh machine in each worker
+    with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+        jobs = {pool.submit(render_one, outdir, *item): k for k, item in enumerate(items)}
+        for job in as_completed(jobs):
+            k = jobs[job]
+            prog, fig, section = items[k]
+            try:
+                rows[k] = job.result()
+            except Exception as e:
+                rows[k] = Row(prog, fig, None, 0.0, f"worker process failed: "
+                              f"{type(e).__name__}: {e}", section, 0.0)
+            bar.step(f"{prog.stem}: {fig['name']}")
+    return rows
+
+
+def render_one(outdir, prog, fig, section):
+    """Render one figure and write its PNG (and GIF); a figure that fails or
+    cannot be written gets its error in the Row."""
+    t = time.perf_counter()
+    err, compiled = None, 0.0
+    anim = fig.get("animate") or ANIMATIONS.get((prog.stem, fig["name"]))
+    stem = _stem(prog, fig)
+    try:
+        img, frames, compiled = _timed_run(prog, fig, anim)
+    except Exception as e:          # a broken figure must not stop the gallery
+        img, frames, err = None, None, f"{type(e).__name__}: {e}"
+    dt = time.perf_counter() - t - compiled
+    fname = stem + ".png"
+    if img is not None:
+        try:
+            write_png(outdir / fname, img)
+            fig = dict(fig, _size=(img.shape[1], img.shape[0]))
+        except Exception as e:      # a figure it cannot write is reported, not fatal
+            img, err = None, f"cannot write {outdir / fname}: {type(e).__name__}: {e}"
+    elif err is None:
+        err = "the program opened no window"
+    if frames and img is not None:
+        try:
+            write_gif(outdir / (stem + ".gif"), frames,
+                      30.0 if anim.get("at") != "acbuf" else 8.0, anim.get("every", 1))
+            fig = dict(fig, _gif=stem + ".gif")
+        except Exception as e:
+            err = f"cannot write {outdir / (stem + '.gif')}: {type(e).__name__}: {e}"
+    return Row(prog, fig, fname if img is not None else None, dt, err, section, compiled)
 
 
 def _run(prog, fig, anim):
@@ -407,9 +437,13 @@ def main(argv=None):
                     help="folder of programs (default: the programs/ of this checkout)")
     ap.add_argument("--only", nargs="*", help="render only figures whose program/name "
                                               "contains one of these strings")
+    ap.add_argument("--workers", type=int, default=None, metavar="N",
+                    help="render in N worker processes (default: one after another here)")
     a = ap.parse_args(argv)
+    if a.workers is not None and a.workers < 1:
+        ap.error("--workers: at least 1")
     folder = Path(a.programs) if a.programs else Path(__file__).resolve().parent.parent / "programs"
-    rows = render(a.out, folder, a.only)
+    rows = render(a.out, folder, a.only, a.workers)
     failed = [r for r in rows if r.error]
     print(f"vgx-gallery: {len(rows) - len(failed)} of {len(rows)} figures -> "
           f"{Path(a.out) / 'index.html'}")
