@@ -57,8 +57,9 @@ def write(results, out_dir):
     names = {}
     for name, sc in results["scenes"].items():
         rows = sc["rows"]
-        hard = [r for r in rows if r["family"] not in ("soft", "floor")]
-        soft = [r for r in rows if r["family"] == "soft"]
+        timed = [r for r in rows if not math.isnan(r["time_ms"])]   # on the compared machine
+        hard = [r for r in timed if r["family"] not in ("soft", "floor")]
+        soft = [r for r in timed if r["family"] == "soft"]
         floor = next((r["rmse"] for r in rows if r["family"] == "floor"), None)
         panels = [(hard, "misclassified", "hard: misclassified % (0 drawn at 0.001)", None),
                   (hard, "rmse", "hard: image RMSE vs point-light reference", floor),

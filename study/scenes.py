@@ -25,6 +25,9 @@ of the viewer's bearing) put on a ground plane, with the light raised
 one: a grazing light 6 degrees above the ground, a thin pole and a thin
 tilted plate casting long shadows, shadows falling on a large sphere
 (a curved receiver) and a torus that shadows itself.
+
+Scenes also come from JSON files (``from_dict``, ``spec_of``; the format:
+docs/shadow-study-at-scale.md); ``to_dict`` writes any scene as one.
 """
 import math
 from dataclasses import dataclass, field
