@@ -707,8 +707,9 @@ def run(seed, primitives, batch, states, jobs, recheck_every, timeout, misuse, l
     with ThreadPoolExecutor(max_workers=jobs) as pool:
         for res in pool.map(one, range(nb)):
             k = res["index"]
-            repro = " ".join(["python"] + _worker_cmd("draw", seed, k, min(
-                batch, primitives - k * batch), states, 2)[1:])
+            repro = (f"python -m vgx_emulator.fuzz --worker draw --seed {seed} --index {k} "
+                     f"--count {min(batch, primitives - k * batch)} --states {states} "
+                     f"--threads 2")
             if "error" in res:
                 summary["findings"].append(dict(batch=k, finding=res["error"], repro=repro))
             else:
