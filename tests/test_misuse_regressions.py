@@ -271,8 +271,8 @@ def test_nonfinite_geometry_gives_no_numpy_warning(open_window, lit):
 
 
 def test_one_warning_per_dropped_batch_naming_the_call_and_value(open_window):
-    """Three bad rectangles in one batch: one VGXWarning, naming rectf and
-    the first offending value."""
+    """Three bad rectangles in one batch: one VGXWarning, naming rectf, what
+    was dropped (6 triangles) and the first offending value."""
     import warnings
     open_window(16, 16)
     with warnings.catch_warnings(record=True) as w:
@@ -284,7 +284,8 @@ def test_one_warning_per_dropped_batch_naming_the_call_and_value(open_window):
         gflush()
     assert len(w) == 1
     msg = str(w[0].message)
-    assert msg.startswith("rectf: ") and msg.endswith("first: vertex (inf, 0, 0, 1)")
+    assert msg.startswith("rectf: 6 triangle(s) with a non-finite")
+    assert msg.endswith("first: vertex (inf, 0, 0, 1)")
 
 
 @pytest.mark.parametrize("call, name", [

@@ -598,12 +598,6 @@ class Misuser:
                             outcome = "changed"
                     except SystemExit:
                         outcome = "exit"      # qread on an empty queue (QueueExhausted)
-                    except TypeError as e:
-                        if hasattr(f, "__wrapped__") or where != "arity":
-                            outcome = "crash"
-                            self._find(name, where, args, f"TypeError: {e}")
-                        else:                 # docs/decisions.md: the v*/n*/c* fast paths
-                            outcome = "typeerror"
                     except BaseException as e:
                         outcome = "crash"
                         self._find(name, where, args,

@@ -343,7 +343,8 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         depthcue.apply(work, st)        # depthcue(3G): colour from window z
     lines2d.smooth(work, st, snap, mode == "line")   # linesmooth/pntsmooth(3G) coverage
     if work.dropped:
-        warn(_callers(batch), f"{work.dropped} primitive(s) with a non-finite vertex, "
+        unit = {FILLED: "triangle(s)", LINES: "line segment(s)"}.get(work.klass, "point(s)")
+        warn(_callers(batch), f"{work.dropped} {unit} with a non-finite vertex, "
              "normal, colour, texture coordinate or transformed position (or one the "
              f"perspective divide cannot place) dropped; first: "
              f"{_offending(pos, attrs, clp, col, bad)}")
