@@ -26,6 +26,13 @@ Workloads:
                   shadow face sent vertex by vertex in every frame (v3f, n3f);
                   Mesa in immediate mode through PyOpenGL (glBegin, glNormal3f,
                   glVertex3f/3fv, glEnd), the same faces.
+  heidmann-1991   the program with --two-pass --infinite, as ports of the time
+                  drew the volumes: every face twice, backface(TRUE) with
+                  ST_INCR then frontface(TRUE) with ST_DECR (GL: glCullFace
+                  GL_BACK / GL_FRONT, GL_INCR / GL_DECR), far corners at
+                  infinity (v4f / glVertex4f with w = 0) under an infinite far
+                  plane; objects / display lists.
+  heidmann-1991-immediate  the same, sent call by call in every frame.
   heidmann-soft   the program's figure 6 (five objects, one light): 32 jittered
                   light positions accumulated (acbuf / glAccum).
   shadowmap       the 5b scene's depth from each of its 4 lights into a
@@ -109,8 +116,9 @@ import programs.heidmann_shadow_volumes as hv  # noqa: E402
 import vgx_emulator  # noqa: E402
 from vgx_emulator.display.png import write_png  # noqa: E402
 
-WORKLOADS = ["spheres", "spheres-depth", "heidmann", "heidmann-immediate", "heidmann-soft",
-             "shadowmap", "fill-z", "fill-stencil", "cold"]
+WORKLOADS = ["spheres", "spheres-depth", "heidmann", "heidmann-immediate", "heidmann-1991",
+             "heidmann-1991-immediate", "heidmann-soft", "shadowmap", "fill-z", "fill-stencil",
+             "cold"]
 SHADOWMAP_SIZE = 1024
 NQUADS = 32
 DIFF_THRESHOLD = 8
@@ -328,22 +336,23 @@ def emu_spheres(w, h, depth_only=False):
     return Side(frame, capture, **emu_matrices(spheres_view))
 
 
-def heidmann_opts(figure, w, h, objects=True):
+def heidmann_opts(figure, w, h, objects=True, style=()):
     """The program's options, with --objects: its scene and shadow volumes
     recorded in IRIS GL objects on the untimed first frame, as the Mesa side
     keeps them in display lists (without: every vertex a v3f call in every
     frame, as the Mesa side then sends glVertex3f)."""
-    return hv.parse(["--figure", figure, "--size", f"{w}x{h}"] + (["--objects"] if objects else []))
+    return hv.parse(["--figure", figure, "--size", f"{w}x{h}"] + (["--objects"] if objects else [])
+                    + list(style))
 
 
-def emu_heidmann(w, h, figure, objects=True):
+def emu_heidmann(w, h, figure, objects=True, style=()):
     """The program's main() up to its event loop; frame = its draw_scene()."""
-    opts = heidmann_opts(figure, w, h, objects)
+    opts = heidmann_opts(figure, w, h, objects, style)
     hv.setup(opts)
     emu_window(w, h, stencil_planes=getgdesc(GD_BITS_STENCIL), accum=opts.jitter > 1)
     subpixel(TRUE)
     mmode(MVIEWING)
-    perspective(hv.FOVY, w / h, hv.NEAR, hv.FAR)
+    hv.projection(w / h)
     hv.define_materials()
     for lt in hv.light:
         hv.define_light(lt)
@@ -681,30 +690,52 @@ def gl_spheres(mesa, w, h, emu, depth_only=False):
     return GLSide(mesa, frame, capture, [lst])
 
 
-def volume_list(g, lpos, immediate=False):
-    """The program's shadow faces for a light: ingoing ones with INCR, then
-    the others with DECR (DrawShadowVolumes' order), z-pass counting.  A
-    display list, or (``immediate``) the function sending them with
-    glBegin/glVertex3fv/glEnd."""
-    faces, ingo = hv.shadow_faces(np.asarray(lpos, float))
-    quads = [[f.tolist() for f in faces[sel]] for sel in (ingo, ~ingo)]
+def volume_list(g, lpos, immediate=False, two_pass=False, infinite=False):
+    """The program's shadow faces for a light, z-pass counting: ingoing ones
+    with INCR, then the others with DECR (DrawShadowVolumes' order), or
+    (``two_pass``) all of them culling back faces with INCR, then all
+    culling front faces with DECR; (``infinite``) far corners at infinity,
+    (x, y, z, 0).  A display list, or (``immediate``) the function sending
+    them with glBegin/glVertex*fv/glEnd."""
+    lpos = np.asarray(lpos, float)
+    faces, ingo = hv.shadow_faces(lpos)
+    hom = np.concatenate((faces, np.ones(faces.shape[:2] + (1,))), axis=2)
+    if infinite:
+        hom[:, 2:, :3] -= lpos
+        hom[:, 2:, 3] = 0.0
+    if two_pass:
+        passes = [(g.GL_BACK, g.GL_INCR, hom), (g.GL_FRONT, g.GL_DECR, hom)]
+    else:
+        passes = [(None, g.GL_INCR, hom[ingo]), (None, g.GL_DECR, hom[~ingo])]
 
-    def build():
-        for sel, op in ((ingo, g.GL_INCR), (~ingo, g.GL_DECR)):
+    def build(send_faces):
+        for cull, op, fs in passes:
+            if cull is not None:
+                g.glEnable(g.GL_CULL_FACE)
+                g.glCullFace(cull)
             g.glStencilOp(g.GL_KEEP, g.GL_KEEP, op)
-            if sel.any():
-                gl_draw_arrays(g, g.GL_QUADS, faces[sel])
+            if len(fs):
+                send_faces(fs)
+        g.glDisable(g.GL_CULL_FACE)
 
-    def send():
-        v3 = g.glVertex3fv
-        for quad, op in zip(quads, (g.GL_INCR, g.GL_DECR)):
-            g.glStencilOp(g.GL_KEEP, g.GL_KEEP, op)
-            for f in quad:
-                g.glBegin(g.GL_POLYGON)
-                for v in f:
-                    v3(v)
-                g.glEnd()
-    return send if immediate else gl_list(g, build)
+    def arrays(fs):
+        p = np.ascontiguousarray(fs.reshape(-1, 4), np.float32)
+        g.glEnableClientState(g.GL_VERTEX_ARRAY)
+        g.glVertexPointer(4, g.GL_FLOAT, 0, p)
+        g.glDrawArrays(g.GL_QUADS, 0, len(p))
+        g.glDisableClientState(g.GL_VERTEX_ARRAY)
+    lists = {id(fs): fs.tolist() for _, _, fs in passes}
+
+    def calls(fs):
+        v4 = g.glVertex4fv
+        for f in lists[id(fs)]:
+            g.glBegin(g.GL_POLYGON)
+            for v in f:
+                v4(v)
+            g.glEnd()
+    if immediate:
+        return lambda: build(calls)
+    return gl_list(g, lambda: build(arrays))
 
 
 def heidmann_light_positions(opts):
@@ -716,7 +747,7 @@ def heidmann_light_positions(opts):
     return [[b + o[j] for b, o in zip(base, offs)] for j in range(opts.jitter)]
 
 
-def gl_heidmann(mesa, w, h, emu, immediate=False):
+def gl_heidmann(mesa, w, h, emu, immediate=False, two_pass=False, infinite=False):
     """Heidmann's listing replayed in GL with the program's scene, lights and
     shadow faces, from display lists or (``immediate``) sent call by call in
     every frame (glBegin/glNormal3f/glVertex3f).  zclear in the lit pass
@@ -734,7 +765,8 @@ def gl_heidmann(mesa, w, h, emu, immediate=False):
         return send if immediate else gl_list(g, send)
     amb, lit = scene(0), scene(1)
     positions = heidmann_light_positions(opts)
-    vols = [[volume_list(g, p, immediate) for p in frame_pos] for frame_pos in positions]
+    vols = [[volume_list(g, p, immediate, two_pass, infinite) for p in frame_pos]
+            for frame_pos in positions]
 
     def call(x):
         x() if immediate else g.glCallList(x)
@@ -853,10 +885,13 @@ def build_pair(name, mesa, w, h):
         depth = name == "spheres-depth"
         emu = emu_spheres(w, h, depth)
         return emu, gl_spheres(mesa, w, h, emu, depth)
-    if name in ("heidmann", "heidmann-soft", "heidmann-immediate"):
-        imm = name == "heidmann-immediate"
-        emu = emu_heidmann(w, h, "6" if name == "heidmann-soft" else "5b", objects=not imm)
-        return emu, gl_heidmann(mesa, w, h, emu, immediate=imm)
+    if name.startswith("heidmann"):
+        imm = name.endswith("-immediate")
+        style = ("--two-pass", "--infinite") if "1991" in name else ()
+        emu = emu_heidmann(w, h, "6" if name == "heidmann-soft" else "5b", objects=not imm,
+                           style=style)
+        return emu, gl_heidmann(mesa, w, h, emu, immediate=imm, two_pass=bool(style),
+                                infinite=bool(style))
     if name == "shadowmap":
         objs, views = shadowmap_views()
         emu = emu_shadowmap(views, objs)

@@ -28,7 +28,14 @@ then holds MYZERO + the number of volumes each visible point lies in),
 ``--objects`` (what DrawObjects and DrawShadowVolumes send is recorded once
 in IRIS GL objects, makeobj/closeobj, and replayed with callobj: the same
 calls, as a port tuned for the VGX would keep its static geometry; the
-volumes are recorded per light position.  The images are the same).
+volumes are recorded per light position.  The images are the same),
+``--two-pass`` (the volume faces drawn twice, as many ports of the time
+did: ``backface(TRUE)`` with ST_INCR counts the faces turned towards the
+eye, then ``frontface(TRUE)`` with ST_DECR those turned away; the same
+counts as choosing the operation per face), ``--infinite`` (the volumes
+extruded to infinity: each far corner sent as ``v4f(d, 0)``, its direction
+from the light, under a perspective whose far plane is at infinity, loaded
+with ``loadmatrix``; z-pass only).
 
 From the listing, in its order and with its names: the stencil check and
 ``stensize(getgdesc(GD_BITS_STENCIL))``, gconfig, ``zbuffer(TRUE)``; the
@@ -380,6 +387,8 @@ def define_light(lt):
 
 
 use_objects = False     # --objects (set by setup)
+two_pass = False        # --two-pass
+infinite = False        # --infinite
 _compiled = {}          # --objects: what a drawing function sent, as an IRIS GL object
 
 
@@ -472,7 +481,33 @@ def DrawShadowVolumes(lpos, zfail):
     _replayed(("volumes", tuple(lpos), zfail), _draw_shadow_volumes, lpos, zfail)
 
 
+def _draw_volume_faces(faces, lpos):
+    """Each face as a polygon: b, a and their pushed copies, or (--infinite)
+    b, a and the directions from the light as points at infinity."""
+    for v1, v2, v3, v4 in faces:
+        bgnpolygon()
+        v3f(v1)
+        v3f(v2)
+        if infinite:
+            d3, d4 = v3 - lpos, v4 - lpos
+            v4f((d3[0], d3[1], d3[2], 0.0))
+            v4f((d4[0], d4[1], d4[2], 0.0))
+        else:
+            v3f(v3)
+            v3f(v4)
+        endpolygon()
+
+
 def _draw_shadow_volumes(lpos, zfail):
+    if two_pass and not zfail:
+        faces, _ = shadow_faces(lpos)
+        for cull, op in ((backface, ST_INCR), (frontface, ST_DECR)):
+            cull(TRUE)                           # faces towards the eye go in: +1,
+            stencil(TRUE, 0, SF_ALWAYS, 0xff,    # those turned away come out: -1
+                    ST_KEEP, ST_KEEP, op)
+            _draw_volume_faces(faces, lpos)
+            cull(FALSE)
+        return
     faces, ingo = shadow_faces(lpos)
     order = np.argsort(~ingo, kind="stable")     # going-into-shadow faces first
     faces, ingo = faces[order], ingo[order]
@@ -493,12 +528,7 @@ def _draw_shadow_volumes(lpos, zfail):
                 stencil(TRUE, 0, SF_ALWAYS, 0xff,    # z-fail: count the faces behind
                         ST_KEEP, ST_DECR if ingoing else ST_INCR,   # the visible point,
                         ST_KEEP)                     # nothing for those in front.
-        bgnpolygon()                             # Draw the shadow volume face.
-        v3f(v1)
-        v3f(v2)
-        v3f(v3)
-        v3f(v4)
-        endpolygon()
+        _draw_volume_faces(faces[iEdge:iEdge + 1], lpos)   # Draw the shadow volume face.
     if zfail:                                    # the caps closing the volumes
         caps = sorted(cap_polygons(lpos), key=lambda c: not c[1])
         for tri, ingoing in caps:
@@ -604,17 +634,41 @@ def parse(argv):
                     help="stop after the shadow-volume pass of light I")
     ap.add_argument("--objects", action="store_true",
                     help="record the scene and the volumes in IRIS GL objects (callobj)")
+    ap.add_argument("--two-pass", action="store_true",
+                    help="volume faces in two passes: backface/ST_INCR, frontface/ST_DECR")
+    ap.add_argument("--infinite", action="store_true",
+                    help="volumes to infinity (v4f with w = 0, infinite far plane)")
     a = ap.parse_args(argv)
+    if a.infinite and a.zfail:
+        ap.error("--infinite draws z-pass volumes (no far caps)")
     a.width, a.height = (int(s) for s in a.size.lower().split("x"))
     if a.jitter is None:
         a.jitter = 32 if a.figure == "6" else 1
     return a
 
 
+def projection(aspect):
+    """perspective(FOVY, aspect, NEAR, FAR), or with --infinite the same
+    with the far plane at infinity (the limit of perspective(3G)'s matrix
+    as far grows), loaded with loadmatrix in MPROJECTION mode."""
+    if not infinite:
+        perspective(FOVY, aspect, NEAR, FAR)
+        return
+    f = 1.0 / math.tan(math.radians(FOVY / 20.0))
+    mode = getmmode()
+    mmode(MPROJECTION)
+    loadmatrix([[f / aspect, 0.0, 0.0, 0.0],
+                [0.0, f, 0.0, 0.0],
+                [0.0, 0.0, -1.0, -1.0],
+                [0.0, 0.0, -2.0 * NEAR, 0.0]])
+    mmode(mode)
+
+
 def setup(opts):
     """Scene, lights and eye of a figure (module globals, as in C)."""
-    global objects, light, nLights, eye, use_objects
+    global objects, light, nLights, eye, use_objects, two_pass, infinite
     use_objects = opts.objects
+    two_pass, infinite = opts.two_pass, opts.infinite
     _compiled.clear()
     scene, names, view = FIGURE_SETUP[opts.figure]
     objects = make_scene(scene)
@@ -640,7 +694,7 @@ def main(argv=None):
     zbuffer(TRUE)                                # z comparison always active.
     subpixel(TRUE)                               # (see the docstring: long slivers)
     mmode(MVIEWING)
-    perspective(FOVY, opts.width / opts.height, NEAR, FAR)
+    projection(opts.width / opts.height)
     define_materials()
     for lt in light:
         define_light(lt)
