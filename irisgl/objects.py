@@ -37,13 +37,31 @@ IMMEDIATE.update({
 
 
 class _Object:
-    __slots__ = ("items", "ops", "cursor", "replacing")
+    __slots__ = ("items", "ops", "cursor", "replacing", "_callees")
 
     def __init__(self):
         self.items = []
         self.ops = []
         self.cursor = 0
         self.replacing = False            # objreplace: new routines overwrite, one for one
+        self._callees = (None, ())
+
+    def callees(self):
+        """The objects this one calls (callobj arguments, in order), from its
+        items as last compiled: kept until closeobj compiles it again (its
+        ``ops`` are then a new list), so callobj checks nesting without
+        walking every item each time."""
+        ops, out = self._callees
+        if ops is not self.ops:
+            out = []
+            for it in self.items:
+                if it[0] == "call" and it[1] == "callobj" and it[3]:
+                    try:
+                        out.append(int(it[3][0]))
+                    except (TypeError, ValueError):
+                        continue
+            self._callees = (self.ops, out)
+        return out
 
 
 def record(name, fn, args):
@@ -190,15 +208,11 @@ def _nesting(obj):
             return 0
         path.add(o)
         d = 0
-        for it in ob.items:
-            if it[0] == "call" and it[1] == "callobj" and it[3]:
-                try:
-                    inner = walk(int(it[3][0]))
-                except (TypeError, ValueError):
-                    continue
-                if inner is None:
-                    return None
-                d = max(d, inner + 1)
+        for c in ob.callees():
+            inner = walk(c)
+            if inner is None:
+                return None
+            d = max(d, inner + 1)
         path.discard(o)
         depth[o] = d
         return d
