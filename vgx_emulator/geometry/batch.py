@@ -262,8 +262,9 @@ class VertexBatch:
     def _tail(self):
         """(positions (n, 4), records (n, RECORD)) of the immediate lists."""
         n = len(self.pos) >> 2
-        pos = np.array(self.pos, np.float64).reshape(n, 4)
-        ev = np.array(self.ev, np.float64).reshape(-1, EVW)
+        # fromiter: half the time of np.array on a list of Python numbers
+        pos = np.fromiter(self.pos, np.float64, len(self.pos)).reshape(n, 4)
+        ev = np.fromiter(self.ev, np.float64, len(self.ev)).reshape(-1, EVW)
         recs = np.array(self.attrs, np.float64).reshape(-1, RECORD)
         return pos, per_vertex(ev, recs, n, self.mats)
 
