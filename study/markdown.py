@@ -200,6 +200,8 @@ def _is_default(r, *free):
 def _fmt(v):
     if isinstance(v, float):
         return f"{v:.2f}"
+    if isinstance(v, dict):
+        return "{" + ", ".join(f"{k}: {_fmt(x)}" for k, x in v.items()) + "}"
     return str(v)
 
 
@@ -305,8 +307,9 @@ LIMITS = """
   as the bilinear and PCF neighbourhoods, so the decisions are those of one big
   map (tests/test_study_scale.py) and memory stays one tile whatever the
   resolution.  A tile's depths can differ from one big window's by one z unit
-  at a few texels (the rasterizer's z plane is anchored at the scissored box's
-  corner), which changes a decision only within one z unit of the bias.
+  at a few texels (each tile has its own projection and scissored box, and the
+  z plane's error of under 2^-16 unit can round a depth either way), which
+  changes a decision only within one z unit of the bias.
 - Times include the emulator's Python front end (one `v3f` per vertex of the
   shadow-volume faces, display lists for the scene) and the numba kernels; they
   rank the methods on this emulator, not on a 1990 VGX.

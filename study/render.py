@@ -16,6 +16,8 @@ Heidmann's additive lit pass and Bentley's lit ground pass) and ``plain``
 
 Rows of every array read back are bottom first (lrectread's order).
 """
+import weakref
+
 import numpy as np
 
 from irisgl import (AMBIENT, DEFLIGHT, DEFLMODEL, DEFMATERIAL, DIFFUSE, FALSE, GD_ZMAX, LCOLOR,
@@ -31,6 +33,7 @@ MYZERO = 128                 # Heidmann's stencil "zero"
 SUN = 1                      # the light's lmdef index
 MODEL = 1                    # the lighting model's index
 MAX_TILE = 1024              # light windows are at most this size (the screen is 1280x1024)
+_LIGHTING = lambda: None     # noqa: E731 (a weak reference to the Stage whose lmdefs hold)
 IDENTITY = np.identity(4)
 
 
@@ -64,6 +67,12 @@ class Stage:
 
     # -- lighting ---------------------------------------------------------
     def _define_lighting(self):
+        """lmdef the scene's materials, lighting model and light.  lmdef's
+        tables belong to the process, not to a window: a second Stage
+        redefines the same indices, so eye_view defines them again when
+        another Stage defined them last."""
+        global _LIGHTING
+        _LIGHTING = weakref.ref(self)
         for name, k in self.materials.items():
             amb, dif = self.scene.materials[name]
             lmdef(DEFMATERIAL, 10 + k, 0, [AMBIENT, *amb, DIFFUSE, *dif, SPECULAR, 0, 0, 0,
@@ -120,6 +129,8 @@ class Stage:
         """Current window := the eye; its perspective and lookat; the light
         bound (fixed in the world) or not."""
         winset(self.eye_win)
+        if _LIGHTING() is not self:
+            self._define_lighting()
         v = self.scene.view
         mmode(MVIEWING)
         perspective(v.fovy, self.width / self.height, v.near, v.far)

@@ -267,7 +267,8 @@ def assemble(store, specs, refs, cfgs, meta, size, quick, full, repeats, budget)
         for label, group in timing_groups(cfgs).items():
             recs = [store.record(name, c.key) for c in group]
             failed += [_failed(r) if r else {"label": label, "seed": c.seed,
-                                             "error": "not run (interrupted)"}
+                                             "error": "no record (the run was interrupted, or the "
+                                                      "scene's reference failed)"}
                        for c, r in zip(group, recs) if r is None or r["status"] != "ok"]
             good = [r for r in recs if r is not None and r["status"] == "ok"]
             if not good:

@@ -13,7 +13,8 @@ distributed = pytest.importorskip("distributed")
 from study import __main__ as cli  # noqa: E402
 from study import report  # noqa: E402
 from study.cluster import DaskPool  # noqa: E402
-from test_study_scale import SIZE, FAILING, records, same_results, tiny_configs, tiny_file  # noqa: E402,E501
+from test_study_scale import (FAILING, SIZE, records, same_results, tiny_configs,  # noqa: E402
+                              tiny_file)
 
 
 @pytest.fixture(scope="module")

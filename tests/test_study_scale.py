@@ -109,7 +109,8 @@ def test_scene_file_primitives_are_the_builders(tmp_path):
 @pytest.mark.parametrize("change, message", [
     (lambda d: d["meshes"].append({"kind": "triangles", "name": "sheet", "material": "thing",
                                    "verts": [[0, 1, 0], [1, 1, 0], [0, 1, 1]],
-                                   "tris": [[0, 1, 2]]}), "'sheet' casts shadows but is not closed"),
+                                   "tris": [[0, 1, 2]]}),
+     "'sheet' casts shadows but is not closed"),
     (lambda d: d["meshes"].append({"kind": "cone", "material": "thing"}), "unknown kind 'cone'"),
     (lambda d: d["meshes"][1].update(material="gold"), "material 'gold'"),
     (lambda d: d.pop("view"), "'view' missing"),
@@ -252,6 +253,40 @@ def test_the_seeds_spread_is_reported(serial):
     assert not np.array_equal(a, b)
     text = (out / "report.md").read_text()
     assert "### Seeds of the jittered configurations" in text and "| soft N=4 | 2 |" in text
+
+
+def _other_scene():
+    """TINY renamed, in other colours and another light."""
+    d = copy.deepcopy(TINY)
+    d.update(name="U", light={"azimuth_left": -40, "elevation": 25}, model_ambient=0.1)
+    d["materials"] = {"ground": {"ambient": [0.1, 0.2, 0.9], "diffuse": [0.2, 0.3, 1.0]},
+                      "thing": {"ambient": [0.9, 0.1, 0.1], "diffuse": [1.0, 0.2, 0.1]}}
+    return d
+
+
+def test_a_stage_draws_the_same_after_another_stage_defined_its_lighting():
+    """lmdef's materials and lights belong to the process: a second Stage
+    redefines the same indices, and the first still draws its own colours."""
+    a = Stage(scenes.from_dict(TINY), *SIZE)
+    before = methods.shadow_volumes(a).image
+    b = Stage(scenes.from_dict(_other_scene()), *SIZE)
+    other = methods.shadow_volumes(b).image
+    assert np.array_equal(methods.shadow_volumes(a).image, before)
+    assert not np.array_equal(other, before)
+
+
+def test_two_scenes_in_one_sweep_are_each_as_alone(serial, tmp_path):
+    """The tiny scene's records in a sweep of two scenes are those of the
+    sweep of it alone (the other scene's stage in between)."""
+    _, whole, root = serial
+    out = tmp_path / "two"
+    cfgs = [c for c in tiny_configs() if c.family != "shadow map" or c.params["res"] == 256]
+    report.run((tiny_file(root), tiny_file(tmp_path, _other_scene(), "u.json")), SIZE,
+               out_dir=out, repeats=1, budget=1.0, cfgs=cfgs, stream=None, timing=False)
+    mine, alone = records(out), records(whole)
+    assert set(mine) == {c.key for c in cfgs} | {"floor"} and records(out, "U")
+    for k in mine:
+        assert {m: mine[k].get(m) for m in MEASURES} == {m: alone[k].get(m) for m in MEASURES}, k
 
 
 def test_resume_finishes_only_what_was_missing(serial, tmp_path):
