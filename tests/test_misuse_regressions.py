@@ -340,3 +340,24 @@ def test_loadmatrix_reads_a_flat_16_as_c_memory(open_window):
         loadmatrix(None)                # was 'matrix has 1 elements'
     with pytest.raises(GLError, match="^multmatrix: matrix 2.0 is not an array"):
         multmatrix(2.0)
+
+
+def test_a_line_cut_point_lost_to_cancellation_is_dropped_with_a_warning(open_window):
+    """A line from x = 1.2e38 (clip space) clipped to the frustum: the cut
+    point computed in float64 is (0, 0.885, 0, 0), and 0/0 placed it at
+    NaN, which reached the line kernel as -2**63 (found by the fuzz, seed
+    19).  It is dropped and warned about, like such a triangle."""
+    import warnings
+    open_window(20, 90)
+    mmode(MSINGLE)
+    loadmatrix(np.eye(4))
+    viewport(2, 15, 55, 82)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        bgnline()
+        v4f([1.2185495338472165e+38, 0.4359100398072116, 1.0388427707360037e+37,
+             1.0095711797475814e+37])
+        v4f([2.3996994481858458, 0.8854088796291958, 2.8553304747028552, 3.8841288383800241])
+        endline()
+        gflush()
+    assert [str(x.message).split(" with ")[0] for x in w] == ["v*/n3f/c*/t*: 1 line segment(s)"]

@@ -285,7 +285,7 @@ class Drawer:
         if recipe["light"]:
             gl.lmdef(gl.DEFMATERIAL, 1, 0, [gl.DIFFUSE] + [float(v) for v in rng.random(3)] +
                      [gl.SPECULAR, 0.5, 0.5, 0.5, gl.SHININESS, 20.0, gl.LMNULL])
-            gl.lmdef(gl.DEFLIGHT, 1, 0, [gl.POSITION] + [_num(rng, 2, 0.05) for _ in range(3)] +
+            gl.lmdef(gl.DEFLIGHT, 1, 0, [gl.POSITION] + [_num(rng, 2, 0) for _ in range(3)] +
                      [float(rng.choice([0.0, 1.0])), gl.LMNULL])
             gl.lmdef(gl.DEFLMODEL, 1, 0, [gl.TWOSIDE, float(recipe["light"] == 2), gl.LMNULL])
             gl.lmbind(gl.MATERIAL, 1)
@@ -713,6 +713,8 @@ def run(seed, primitives, batch, states, jobs, recheck_every, timeout, misuse, l
                 summary["rechecked"] += bool(res.get("rechecked"))
                 for f in res["findings"]:
                     summary["findings"].append(dict(batch=k, finding=f, repro=repro))
+                    if log:
+                        print(f"  batch {k}: {f[:400]}", file=log, flush=True)
                 for e in res.get("recheck_errors", ()):
                     summary["findings"].append(dict(batch=k, finding=e["error"], repro=repro))
             if log:
@@ -734,6 +736,40 @@ def run(seed, primitives, batch, states, jobs, recheck_every, timeout, misuse, l
     return summary
 
 
+def markdown(summary):
+    """The figures of a summary as Markdown (docs/reliability.md): the
+    drawing run, then one row per call of its misuse trials."""
+    s = summary
+    st = s["stats"]
+    kinds = ", ".join(f"{k} {v}" for k, v in sorted(st.items())
+                      if k in KIND_NAMES)
+    errs = "; ".join(f"{k[8:]}: {v}" for k, v in sorted(st.items()) if k.startswith("GLError"))
+    lines = [f"- seed {s['seed']}: {s['primitives']} primitives in {s['frames']} frames, "
+             f"{s['batches']} batches of {s['batch']} (a subprocess each), {s['states']} "
+             f"raster-state recipes, {s['rechecked']} batches run again on 1 and on 2 threads; "
+             f"{s['seconds']:.0f} s",
+             f"- {st.get('vertices', 0)} vertices in bgn/end primitives; by kind: {kinds}",
+             f"- {st.get('vgxwarnings', 0)} VGXWarnings (dropped non-finite primitives, each "
+             f"naming its calls); GLErrors while drawing: {errs or 'none'}",
+             f"- findings: {len(s['findings'])}"]
+    for f in s["findings"][:20]:
+        lines.append(f"  - batch {f['batch']}: {f['finding'][:300]}")
+    m = s.get("misuse")
+    if m:
+        o = m["outcomes"]
+        lines += ["", f"Misuse: {m['calls']} calls, {m['trials']} trials: " +
+                  ", ".join(f"{v} {k}" for k, v in sorted(o.items())) + f"; {m['seconds']:.0f} s.",
+                  "", "| call | trials | refused (GLError, state unchanged) | accepted | other |",
+                  "|---|---|---|---|---|"]
+        for name, row in sorted(m["table"].items()):
+            n = sum(row.values())
+            other = ", ".join(f"{k} {v}" for k, v in sorted(row.items())
+                              if k not in ("refused", "accepted"))
+            lines.append(f"| `{name}` | {n} | {row.get('refused', 0)} | "
+                         f"{row.get('accepted', 0)} | {other} |")
+    return "\n".join(lines) + "\n"
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="python -m vgx_emulator.fuzz", description=__doc__.split(
         "\n\n")[0])
@@ -750,6 +786,8 @@ def main(argv=None):
     ap.add_argument("--misuse", choices=("quick", "full"), default=None,
                     help="also give every call wrong arguments")
     ap.add_argument("--json", help="write the summary there")
+    ap.add_argument("--markdown", metavar="SUMMARY_JSON",
+                    help="print the figures of a summary written by --json as Markdown")
     ap.add_argument("--worker", choices=("draw", "misuse"), help=argparse.SUPPRESS)
     ap.add_argument("--index", type=int, default=0, help=argparse.SUPPRESS)
     ap.add_argument("--count", type=int, default=0, help=argparse.SUPPRESS)
@@ -757,6 +795,10 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help=argparse.SUPPRESS)
     ap.add_argument("--only", help=argparse.SUPPRESS)
     a = ap.parse_args(argv)
+    if a.markdown:
+        with open(a.markdown) as fh:
+            print(markdown(json.load(fh)), end="")
+        return 0
     if a.worker == "draw":
         print(json.dumps(Drawer(a.seed, a.index, a.count, a.states, a.threads).run()))
         return 0

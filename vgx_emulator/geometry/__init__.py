@@ -336,9 +336,13 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         idx = idx[~drop]
         codes = clip.outcodes(clp[idx], gx, gy, ud[idx] if nuser else None)
         idx = idx[codes == 0]
-        rows = np.concatenate((clp[idx], col[idx]), axis=1)
-        work.points = lines2d.grow_points(_window_rows(rows, viewport_rect, near_far, snap),
-                                          lines2d.used_point_size(st.pntsize))
+        rows = _window_rows(np.concatenate((clp[idx], col[idx]), axis=1), viewport_rect,
+                            near_far, snap)
+        ok = viewport.placed(rows)
+        if not ok.all():                # the divide cannot place it (viewport.placed)
+            work.dropped += int((~ok).sum())
+            rows = rows[ok]
+        work.points = lines2d.grow_points(rows, lines2d.used_point_size(st.pntsize))
     if shade and st.depthcue:
         depthcue.apply(work, st)        # depthcue(3G): colour from window z
     lines2d.smooth(work, st, snap, mode == "line")   # linesmooth/pntsmooth(3G) coverage

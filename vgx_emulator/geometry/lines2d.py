@@ -127,6 +127,10 @@ def line_work(batch, st, table, pos, clp, col, bad, gx, gy, ud, vp, near_far, sn
     p0, p1, kept = clip.clip_segments(clp, col, segs, gx, gy, ud)
     seg0 = _window_rows(p0, vp, near_far, snap)
     seg1 = _window_rows(p1, vp, near_far, snap)
+    ok = viewport.placed(seg0) & viewport.placed(seg1)
+    if not ok.all():                # a cut point the divide cannot place (viewport.placed)
+        dropped += int((~ok).sum())
+        seg0, seg1, kept = seg0[ok], seg1[ok], kept[ok]
     flat = np.ascontiguousarray(col[prov[kept]])
     hollow = outline and st.polymode == PYM_HOLLOW
     pattern = 0xFFFF if hollow else (linestyles or {}).get(st.linestyle, 0xFFFF) & 0xFFFF

@@ -63,6 +63,17 @@ def _floats(depth_range):
     return float(depth_range[0]), float(depth_range[1])
 
 
+def placed(rows):
+    """Per window row (x, y, z, ...): whether the divide placed it, by the
+    rule of window_fixed (finite, |x|, |y| below the fixed-point range, |z|
+    below Z_LIMIT).  A line or point cut from a vertex of 1e38 can lose its
+    clip w to cancellation (0/0 gives NaN); such a row is dropped."""
+    limit = FIXED_LIMIT / ONE
+    with np.errstate(invalid="ignore"):
+        return (np.abs(rows[:, 0]) < limit) & (np.abs(rows[:, 1]) < limit) & \
+            (np.abs(rows[:, 2]) < Z_LIMIT)
+
+
 def window_fixed(v, tris, viewport, depth_range, snap):
     """to_window, then the fixed point the rasterizer takes, in one pass over
     the vertices (N, 4) that the triangles (T, 3) use.  A vertex is placed
