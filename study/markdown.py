@@ -50,6 +50,12 @@ def timing_section(results):
         lo, hi = m["load (1 min)"]
         lines.append(f"| {key}{mark} | {m['cores']} | {', '.join(map(str, m['threads']))} "
                      f"| {slots} | {m['rows']} | {lo:.2f} to {hi:.2f} |")
+    busy = [(k, m) for k, m in machines.items() if m["load (1 min)"][1] > m["cores"]]
+    for key, m in busy:
+        lines.append(f"\nOn {key} the 1-minute load average reached "
+                     f"{m['load (1 min)'][1]:.2f} on {m['cores']} cores during the timing: "
+                     f"other work shared the machine, and its times carry it (compare them "
+                     f"with each other, not with another run's).")
     if len(machines) > 1:
         lines.append(f"\nTimes were taken on {len(machines)} machines.  Only those of "
                      f"{compared} are compared (findings, Pareto fronts, plots); a row timed "
