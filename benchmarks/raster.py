@@ -21,7 +21,7 @@ fewer writes):
   blend     blendfunction(BF_SA, BF_MSA)
   logicop   logicop(LO_XOR)
   stencil   stencil(TRUE, 0, SF_ALWAYS, 0xff, ST_KEEP, ST_INCR, ST_KEEP)
-            (z-buffer off: `pass` applies, Decision 1)
+            (z-buffer off: `pass` applies, docs/semantics.md §6)
   writemask wmpack(0xff00ff00)
   z         zbuffer(TRUE), ZF_LEQUAL, nearer quads
 

@@ -555,7 +555,7 @@ def _v4(rgb, a=1.0):
 
 def gl_material(g, m):
     """An lmdef material: ALPHA is the diffuse alpha; SHININESS 0 turns the
-    specular term off in IRIS GL (Decision 9) but not in GL, so it is
+    specular term off in IRIS GL (docs/semantics.md §9) but not in GL, so it is
     dropped then."""
     f = g.GL_FRONT_AND_BACK
     spec = m[L.SPECULAR] if m[L.SHININESS][0] != 0.0 else (0.0, 0.0, 0.0)

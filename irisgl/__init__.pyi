@@ -2434,7 +2434,7 @@ def lookat(vx: Coord, vy: Coord, vz: Coord, px: Coord, py: Coord, pz: Coord, twi
     """C: void lookat(Coord vx, Coord vy, Coord vz, Coord px, Coord py, Coord pz, Angle twist)
 
 lookat(3G): eye at v looking at p, twist in tenths of degrees.
-eye == reference point raises GLError (Decision 8)."""
+eye == reference point raises GLError (docs/semantics.md §2)."""
 
 def lrectread(x1: Screencoord, y1: Screencoord, x2: Screencoord, y2: Screencoord, parray: ArrayLike | None = None) -> Any:
     """C: long lrectread(Screencoord x1, Screencoord y1, Screencoord x2, Screencoord y2, unsigned long parray[])
@@ -2443,7 +2443,7 @@ lrectread(3G): pixels x1..x2, y1..y2 (window coordinates, inclusive),
 left to right then bottom to top.  Returns (x2-x1+1)*(y2-y1+1).
 
 Python: without ``parray`` returns an (h, w) uint32 array, row 0 at y1
-(from SRC_ZBUFFER: int32 signed z values, Decision 3); with a writable
+(from SRC_ZBUFFER: int32 signed z values, docs/semantics.md §5); with a writable
 numpy array or a list of at least h*w elements, fills its first h*w
 (as C fills a larger buffer) and returns the count."""
 
@@ -2453,7 +2453,7 @@ def lrectwrite(x1: Screencoord, y1: Screencoord, x2: Screencoord, y2: Screencoor
 lrectwrite(3G): write (x2-x1+1)*(y2-y1+1) packed pixels, left to right
 then bottom to top, lower-left at (x1, y1), zoomed by rectzoom.
 Writemasks, blend/logicop, afunction and scrmask apply; no z, stencil or
-pattern (Decision 11)."""
+pattern (docs/semantics.md §11)."""
 
 def lsbackup(b: Boolean) -> None:
     """C: void lsbackup(Boolean b)
@@ -3565,7 +3565,7 @@ stencil(3G): enable the stencil test; the pixel passes when
 ``(ref & mask) FUNC (stencil & mask)``.  ``fail_`` applies when it fails,
 ``pass_`` when it passes and the z test fails (or the z-buffer is off),
 ``zpass`` when both pass.  With ``enable`` FALSE the rest is ignored.
-ref is clamped to 2**planes - 1 when drawing (Decision 2)."""
+ref is clamped to 2**planes - 1 when drawing (docs/semantics.md §6)."""
 
 def stensize(planes: int) -> None:
     """C: void stensize(long planes)
@@ -3977,7 +3977,7 @@ def zclear(*ignored: Any) -> None:
 
 zclear(3G): z := GD_ZMAX over viewport ∩ scrmask, under zwritemask.
 One extra argument (Heidmann's listing) is accepted and ignored
-(Decision 13)."""
+(docs/semantics.md §1)."""
 
 def zdraw(b: Boolean) -> None:
     """C: void zdraw(Boolean b)

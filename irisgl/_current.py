@@ -164,7 +164,7 @@ def integer(call, x, what="argument"):
     ``XMAXSCREEN*3/4`` or ``circfs(x, y, r)`` with ``float r``); NaN and
     infinity have no integer value and are refused."""
     if isinstance(x, int):
-        return int(x)                     # exact, however wide (Decision 13 masks)
+        return int(x)                     # exact, however wide (docs/semantics.md §1 masks)
     if isinstance(x, np.integer):
         return int(x)
     if isinstance(x, str):
@@ -193,7 +193,7 @@ def boolean(call, x):
 
 def words(a, mask):
     """An integer array reduced to the bits of ``mask``, as C converts a
-    value to an ``unsigned long``/``short`` array element (Decision 13);
+    value to an ``unsigned long``/``short`` array element (docs/semantics.md §1);
     an object array of Python integers of any size (2**70) included.
     Raises TypeError/ValueError for elements that are not integers."""
     if a.dtype == object:
@@ -202,7 +202,7 @@ def words(a, mask):
 
 
 def ulong(x):
-    """unsigned long arguments: reduced modulo 2**32 (Decision 13)."""
+    """unsigned long arguments: reduced modulo 2**32 (docs/semantics.md §1)."""
     return int(x) & 0xFFFFFFFF
 
 

@@ -1,4 +1,4 @@
-"""Accumulation buffer calls (reference section 10; Decision 10)."""
+"""Accumulation buffer calls (docs/semantics.md §10)."""
 from vgx_emulator.errors import fail
 
 from . import constants as K

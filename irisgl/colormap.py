@@ -1,4 +1,4 @@
-"""Colour maps (reference section 15; docs/colour-map-and-depthcue.md).
+"""Colour maps (docs/semantics.md §15; docs/colour-map-and-depthcue.md).
 
 Every framebuffer has its own map (drawmode(3G)): mapcolor/getmcolor use
 the current drawmode's.  The normal map has 4096 entries, or 16 maps of

@@ -9,9 +9,7 @@ literal):
 * ``<gl/device.h>`` (device numbers for the event queue).
 
 Names keep their exact C spelling and case.  Values follow the SGI IRIX 4/5
-headers; where the project reference (``irisgl-reference.md``, entries tagged
-[H]) lists a constant, its value is the one used here (no disagreement was
-found).  Function-like macros (``ISBUTTON()``...), include guards
+headers (the man pages quote the same values where they give them).  Function-like macros (``ISBUTTON()``...), include guards
 (``GLDEF``, ``GETDEF``, ``DEVICEDEF``), the C ``NULL`` and type names are not
 constants and are left out.
 
@@ -857,7 +855,7 @@ ASK_RESTART = 4
 
 # ---------------------------------------------------------------------------
 # gl.h: obsolete screen limits (the Release 2.3 gl.h had 1023 x 767; the
-# 4D headers and the reference use the high-resolution 1279 x 1023)
+# 4D headers and the man pages use the high-resolution 1279 x 1023)
 # ---------------------------------------------------------------------------
 XMAXSCREEN = 1279
 YMAXSCREEN = 1023

@@ -1,4 +1,4 @@
-"""Curves and patches (reference section 17): defbasis, curvebasis,
+"""Curves and patches (docs/semantics.md §17): defbasis, curvebasis,
 curveprecision, crv, crvn, rcrv, rcrvn, patchbasis, patchcurves,
 patchprecision, patch, rpatch.
 

@@ -1,4 +1,4 @@
-"""z-buffer calls (reference section 5; Decisions 3, 4, 13)."""
+"""z-buffer calls (docs/semantics.md §5, §1)."""
 from vgx_emulator.framebuffer import ZMAX, ZMIN
 
 from . import constants as K
@@ -54,7 +54,7 @@ def zwritemask(mask):
 def zclear(*ignored):
     """zclear(3G): z := GD_ZMAX over viewport ∩ scrmask, under zwritemask.
     One extra argument (Heidmann's listing) is accepted and ignored
-    (Decision 13)."""
+    (docs/semantics.md §1)."""
     from vgx_emulator.errors import fail
     if len(ignored) > 1:
         fail("zclear", f"{len(ignored)} arguments", "zclear takes none (one is tolerated)")

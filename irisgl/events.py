@@ -1,4 +1,4 @@
-"""Event queue and input devices (reference section 13,
+"""Event queue and input devices (docs/semantics.md §13,
 docs/windows-and-devices.md).
 
 Device numbers are checked against the partition of qenter(3G): qdevice,

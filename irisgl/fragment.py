@@ -1,4 +1,4 @@
-"""Writemasks, blending, alpha test, logic op, dither (reference section 7)."""
+"""Writemasks, blending, alpha test, logic op, dither (docs/semantics.md §7)."""
 from vgx_emulator.errors import fail
 
 from . import constants as K

@@ -1,4 +1,4 @@
-"""Lighting calls: lmdef, lmbind, lmcolor, nmode (reference section 9).
+"""Lighting calls: lmdef, lmbind, lmcolor, nmode (docs/semantics.md §9).
 
 Definitions are global (every window sees them); bindings belong to the
 window.  A light's POSITION and SPOTDIRECTION are taken through the
@@ -91,7 +91,7 @@ def lmcolor(mode):
     machine.state_change(w)
     st = w.st
     # a colour already sent under a material mode stays in the bound material
-    # until the next material bind (reference 9.4), whatever lmcolor says next
+    # until the next material bind (docs/semantics.md §9), whatever lmcolor says next
     if st.colour_since_bind and st.lmcolor in _LMC_TARGETS:
         rgb = tuple(c / 255.0 for c in st.colour[:3])
         ov = dict(st.mat_override)

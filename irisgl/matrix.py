@@ -1,5 +1,5 @@
 """The geometry calls: mmode, matrix stacks, transformations, projections,
-viewing, viewport (reference sections 1.2-2, Decision 7 and 8).
+viewing, viewport (docs/semantics.md §1, §2).
 
 Row vectors, premultiplication (``C <- T . C``), angles in tenths of degrees
 for ``Angle`` arguments and float degrees for ``rot``.
@@ -224,7 +224,7 @@ def window(left, right, bottom, top, near, far):
 @glcall
 def lookat(vx, vy, vz, px, py, pz, twist):
     """lookat(3G): eye at v looking at p, twist in tenths of degrees.
-    eye == reference point raises GLError (Decision 8)."""
+    eye == reference point raises GLError (docs/semantics.md §2)."""
     v = [num("lookat", a) for a in (vx, vy, vz, px, py, pz, twist)]
     if not all(math.isfinite(a) for a in v):
         fail("lookat", "non-finite argument", "finite coordinates and twist")

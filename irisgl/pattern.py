@@ -1,8 +1,8 @@
-"""Patterns (reference section 8): defpattern, setpattern, getpattern.
+"""Patterns (docs/semantics.md §8): defpattern, setpattern, getpattern.
 
 Bit 15 of each short is the leftmost pixel; shorts run left to right, then
 bottom to top.  The pattern is tiled over the whole screen, so its phase
-follows the window's origin (Decision 15).  A 0 bit protects the pixel in
+follows the window's origin (docs/semantics.md §8).  A 0 bit protects the pixel in
 every bank.  Patterns apply to filled primitives and clear only.
 """
 import numpy as np

@@ -1,4 +1,4 @@
-"""Reading pixels (reference section 11): readsource, lrectread."""
+"""Reading pixels (docs/semantics.md §11): readsource, lrectread."""
 import numpy as np
 
 from vgx_emulator.errors import fail
@@ -91,7 +91,7 @@ def lrectread(x1, y1, x2, y2, parray=None):
     left to right then bottom to top.  Returns (x2-x1+1)*(y2-y1+1).
 
     Python: without ``parray`` returns an (h, w) uint32 array, row 0 at y1
-    (from SRC_ZBUFFER: int32 signed z values, Decision 3); with a writable
+    (from SRC_ZBUFFER: int32 signed z values, docs/semantics.md §5); with a writable
     numpy array or a list of at least h*w elements, fills its first h*w
     (as C fills a larger buffer) and returns the count.
     """
@@ -151,7 +151,7 @@ def lrectwrite(x1, y1, x2, y2, parray):
     """lrectwrite(3G): write (x2-x1+1)*(y2-y1+1) packed pixels, left to right
     then bottom to top, lower-left at (x1, y1), zoomed by rectzoom.
     Writemasks, blend/logicop, afunction and scrmask apply; no z, stencil or
-    pattern (Decision 11)."""
+    pattern (docs/semantics.md §11)."""
     _write("lrectwrite", x1, y1, x2, y2, parray, np.uint32)
 
 

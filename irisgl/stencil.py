@@ -1,4 +1,4 @@
-"""Stencil calls (reference section 6; Decisions 1 and 2)."""
+"""Stencil calls (docs/semantics.md §6)."""
 from vgx_emulator.errors import fail
 
 from . import constants as K
@@ -19,7 +19,7 @@ def stencil(enable, ref, func, mask, fail_, pass_, zpass):
     ``(ref & mask) FUNC (stencil & mask)``.  ``fail_`` applies when it fails,
     ``pass_`` when it passes and the z test fails (or the z-buffer is off),
     ``zpass`` when both pass.  With ``enable`` FALSE the rest is ignored.
-    ref is clamped to 2**planes - 1 when drawing (Decision 2)."""
+    ref is clamped to 2**planes - 1 when drawing (docs/semantics.md §6)."""
     w = win("stencil")
     on = boolean("stencil", enable)
     if not on:

@@ -1,4 +1,4 @@
-"""Texture mapping calls (reference section 16): texdef2d, tevdef, tevbind,
+"""Texture mapping calls (docs/semantics.md §16): texdef2d, tevdef, tevbind,
 texbind, t2*/t3*/t4*, texgen, scrsubdivide.
 
 Texturing happens only while a texture != 0 is bound to TX_TEXTURE_0 and an

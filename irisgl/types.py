@@ -1,4 +1,4 @@
-"""The C types of the IRIS GL headers (porting conventions 1, reference 1.1).
+"""The C types of the IRIS GL headers (docs/porting.md §1, docs/semantics.md §1).
 
 ``Matrix`` is a 4x4 float32 numpy array type (``m[row][col]`` as in C); the
 scalar types are the plain Python numbers they hold.

@@ -1,8 +1,8 @@
-"""Windows and framebuffer configuration (reference sections 4 and 13).
+"""Windows and framebuffer configuration (docs/semantics.md §4, §13).
 
 winopen opens a headless window on the virtual 1280x1024 VGX screen; its
 size and place come from prefsize/prefposition (default: 640x480 at the
-screen origin, Decision 15).  Configuration requests (RGBmode, cmode,
+screen origin, docs/semantics.md §8).  Configuration requests (RGBmode, cmode,
 doublebuffer, singlebuffer, stensize, acsize) take effect at gconfig, which
 creates the banks they ask for.
 """
@@ -351,7 +351,7 @@ def greset():
     machine.colormap[:] = default_colormap()
 
 
-# -- window-manager requests (reference section 13, docs/windows-and-devices.md) ------
+# -- window-manager requests (docs/semantics.md §13, docs/windows-and-devices.md) ------
 def _pos(call, x, y, what):
     x = integer(call, x, f"{what} x")
     y = integer(call, y, f"{what} y")

@@ -53,12 +53,13 @@ Two more corrections are needed to use W in IRIS GL with ``multmatrix``:
 
    That is Tessman's local-light matrix with y and z exchanged.
 
-Stability (pitfalls a.5): points at or above a local light (w <= 0) would be
-thrown to the far side of the light, an inverted shadow; the clipper drops
-w <= 0, so only the part below the light casts (its shadow reaching to the
-horizon).  A light at or below the horizon (lz <= 0, or an infinite light
-within 0.5 degrees of it) lights nothing on the top of the ground and casts
-no shadow there: it is skipped, and lz is never divided by.
+Stability (docs/stability.md, "local light below the top of an object"):
+points at or above a local light (w <= 0) would be thrown to the far side of
+the light, an inverted shadow; the clipper drops w <= 0, so only the part
+below the light casts (its shadow reaching to the horizon). A light at or
+below the horizon (lz <= 0, or an infinite light within 0.5 degrees of it)
+lights nothing on the top of the ground and casts no shadow there: it is
+skipped, and lz is never divided by.
 
 Two lights, overlapping shadows.  The paper projects every polygon once per
 light ("for N lights there will be N projections of each polygon") and
@@ -67,7 +68,8 @@ cannot see it.  So a ground point blocked from one light is still lit by the
 other, and only where both shadows overlap does it get the ambient light
 alone: the overlap is darker, each light's shadow is not.  Overlapping
 shadow polygons of the SAME light (the faces of one object, or two objects)
-must not darken twice (pitfalls a.6).  Route used: stencil once per light.
+must not darken twice (tests/test_program_bentley_ground.py checks it).
+Route used: stencil once per light.
 
     ground, ambient only                       (zbuffer off)
     for each light i:

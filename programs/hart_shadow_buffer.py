@@ -36,7 +36,7 @@ and beta in the z row (column vectors):
 IRIS GL's ``perspective(fovy, aspect, n, f)`` is that matrix, transposed for
 row vectors: alpha = Projection[2][2] = -(f+n)/(f-n) and
 beta = Projection[3][2] = -2fn/(f-n).  The viewport then maps NDC z to the
-``lsetdepth(zn, zf)`` range (reference, Decision 4):
+``lsetdepth(zn, zf)`` range (docs/semantics.md §5):
 z_window = (zf+zn)/2 + (zf-zn)/2 * z_ndc.  So window z is again of the form
 
     z_window = ALPHA + BETA / z_eye,

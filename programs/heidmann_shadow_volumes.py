@@ -76,7 +76,7 @@ Reconstructed (the listing elides or the scan lost it):
   ambient (diffuse, specular 0) for the ambient pass, diffuse + specular
   (ambient 0) for the light passes, so the model ambient is added once.
 - The lit pass keeps the listing as scanned: ``zclear(getgdesc(GD_ZMAX))``
-  (zclear takes no argument; the extra one is ignored, Decision 13), then
+  (zclear takes no argument; the extra one is ignored, docs/semantics.md §1), then
   ``zwritemask(0xffffffff)`` and the default ZF_LEQUAL.  Read alone the
   comment "Reset the z-buffer contents" suggests the z of the ambient pass is
   lost, which would let every surface hidden behind a lit visible point add

@@ -51,17 +51,18 @@ W = ly - Y_old, which the divide turns into the paper's similar-triangle
 result X_new = (ly X_old - lx Y_old) / (ly - Y_old).  With lx = lz = 0 the
 infinite matrix is diag(1, 0, 1, 1), i.e. scale(1.0, 0.0, 1.0).
 
-Stability rule (pitfalls a.5): only the part of the object with W > 0, i.e.
-below the light, casts a shadow; parts at or above a local light would land
-on the wrong side of it (an inverted shadow).  The emulator's homogeneous
-clipper discards W <= 0, as the VGX clipper does, so the matrix is simply
-used as it is.  The shadow of a part just below a local light reaches
-towards the horizon, and with the ground drawn without z-buffer nothing
-stops it at the ground's edge: the ground is made larger than the far
-clipping distance, so the far plane ends ground and shadow together (a
-smaller ground would let the shadow run on over the sky).  A light at or below the horizon (ly <= 0, or an infinite
-light within 0.5 degrees of it) lights nothing on the top of the ground: no
-shadow is drawn, and no division by ly is attempted.
+Stability rule (docs/stability.md, "local light below the top of an object"):
+only the part of the object with W > 0, i.e. below the light, casts a shadow;
+parts at or above a local light would land on the wrong side of it (an
+inverted shadow). The emulator's homogeneous clipper discards W <= 0, as the
+VGX clipper does, so the matrix is simply used as it is. The shadow of a part
+just below a local light reaches towards the horizon, and with the ground
+drawn without z-buffer nothing stops it at the ground's edge: the ground is
+made larger than the far clipping distance, so the far plane ends ground and
+shadow together (a smaller ground would let the shadow run on over the sky). A
+light at or below the horizon (ly <= 0, or an infinite light within 0.5
+degrees of it) lights nothing on the top of the ground: no shadow is drawn,
+and no division by ly is attempted.
 
 Options (after ``--`` under vgx-run):
   --figure fig1|fig2|fig3|moving   the paper's three cases and a moving light

@@ -60,7 +60,7 @@ _JIT = dict(cache=True, error_model="numpy", fastmath=False)
 
 
 # ---------------------------------------------------------------------------
-# the eye's matrices, float64 (IRIS GL reference section 2, row vectors)
+# the eye's matrices, float64 (docs/semantics.md §2, row vectors)
 def lookat_matrix(v, p):
     """lookat(vx, vy, vz, px, py, pz, 0): T(-v) . R."""
     v, p = np.asarray(v, float), np.asarray(p, float)

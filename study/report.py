@@ -124,12 +124,11 @@ def error_phase(pool, store, specs, size, cfgs, threads, max_tile, stream, on_re
         else:
             bar.step(f"{name}: floor (done before)")
 
-    def finish(name, key, cfg, image, lit, fb, info, where, seconds):
+    def finish(name, key, cfg, image, lit, meta):
         rec = {"status": "ok", "scene": name, "key": key, "label": _label(cfg),
                "family": "floor" if cfg is None else cfg.family,
                "params": {} if cfg is None else dict(cfg.params),
-               "seed": None if cfg is None else cfg.seed, "fb_bytes": fb, "info": info,
-               "render_s": seconds, "where": where,
+               "seed": None if cfg is None else cfg.seed, **meta,
                **sweep.measures(cfg is not None and cfg.soft, lit, image, refs[name])}
         store.save_record(name, key, rec)
         if on_record:
@@ -161,17 +160,18 @@ def error_phase(pool, store, specs, size, cfgs, threads, max_tile, stream, on_re
                                  reference_summary(refs[name], value["seconds"]))
             bar.step(f"{name}: reference")
             submit_floor(name)
-            for c, (image, lit) in waiting.pop(name, []):
-                finish(name, c.key, c, image, lit, None, {}, None, None)
-                bar.step(f"{name}: {c.label}")
+            for c, (image, lit, meta) in waiting.pop(name, []):
+                finish(name, c.key, c, image, lit, meta)
+                bar.step(f"{name}: {_label(c)}")
             continue
         if ok and value.get("ok"):
-            store.save_shot(name, key, value["image"], value["lit"])
+            meta = {"fb_bytes": value["fb_bytes"], "info": value["info"],
+                    "where": value["where"], "render_s": value["seconds"]}
+            store.save_shot(name, key, value["image"], value["lit"], meta)
             if name not in refs:
-                waiting[name].append((cfg, (value["image"], value["lit"])))
+                waiting[name].append((cfg, (value["image"], value["lit"], meta)))
                 continue
-            finish(name, key, cfg, value["image"], value["lit"], value["fb_bytes"],
-                   value["info"], value["where"], value["seconds"])
+            finish(name, key, cfg, value["image"], value["lit"], meta)
             bar.step(f"{name}: {_label(cfg)}")
             continue
         fail = value if ok else {"error": f"{type(value).__name__}: {value}",
@@ -350,7 +350,7 @@ def write_outputs(results, store, specs, refs, cfgs, out_dir, md_path, docs):
                 if label in groups:
                     got = store.shot(name, groups[label][0].key)
                     if got is not None:
-                        shots[label] = Shot(*got)
+                        shots[label] = Shot(*got[:2])
             sc["pictures"] = write_pictures(name, refs[name], shots, out_dir)
     (out_dir / "results.json").write_text(json.dumps(results, indent=1, default=_json))
     plots = write_plots(results, out_dir)

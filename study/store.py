@@ -107,17 +107,20 @@ class Store:
         return r is not None and r.get("status") == "ok"
 
     def shot(self, scene, key):
-        """(image uint8, decision) of a configuration, or None."""
+        """(image uint8, decision, meta dict) of a configuration, or None."""
         path = self.root / scene / f"{key}.npz"
         if not path.exists():
             return None
         with np.load(path) as z:
-            return z["image"], z["lit"]
+            meta = json.loads(str(z["meta"])) if "meta" in z.files else {}
+            return z["image"], z["lit"], meta
 
-    def save_shot(self, scene, key, image, lit):
+    def save_shot(self, scene, key, image, lit, meta=None):
+        """The image and decision, with ``meta`` (JSON: where it was drawn...)."""
         d = self.dir(scene)
         tmp = d / f".{key}.{uuid.uuid4().hex[:8]}.npz"
-        np.savez_compressed(tmp, image=image, lit=lit)
+        np.savez_compressed(tmp, image=image, lit=lit,
+                            meta=np.array(json.dumps(meta or {}, default=_json_default)))
         os.replace(tmp, d / f"{key}.npz")
 
     def save_record(self, scene, key, record):

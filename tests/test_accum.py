@@ -1,4 +1,4 @@
-"""acbuf(3G) and acsize(3G) (reference section 10, Decision 10).
+"""acbuf(3G) and acsize(3G) (docs/semantics.md §10).
 
 The accumulation buffer has 16 signed bits per component on the VGX.  Its
 contents are observed through AC_RETURN and, where the signed values matter
@@ -173,7 +173,7 @@ def test_accumulate_value_clamped_to_256(value, factor):
 
 
 def test_accumulate_overflow_wraps_signed_16_bit():
-    """Decision 10: 200 * 256 = 51200 does not fit; it wraps to -14336."""
+    """docs/semantics.md §10: 200 * 256 = 51200 does not fit; it wraps to -14336."""
     open_win(1, 1)
     czclear(pack([200, 100, 0, 255]), 0)
     acbuf(AC_CLEAR_ACCUMULATE, 256)

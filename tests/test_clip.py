@@ -1,7 +1,7 @@
 """Clipping: the near plane, w <= 0, the guard band, non-finite input.
 
 Expected regions are computed in the tests from the projection formulas of
-reference section 2 (perspective, viewport mapping) and the fill rule model
+docs/semantics.md §2 (perspective, viewport mapping) and the fill rule model
 of ``tests/reference/raster.py``; nothing is copied from the emulator.
 """
 import math
@@ -76,7 +76,7 @@ def _persp_window(w=W, h=H, near=0.1, far=1000.0):
 
 def _to_window(p, w=W, h=H, near=0.1, far=1000.0, aspect=1.0):
     """Eye-space point -> window (x, y), perspective(900, aspect, near, far)
-    and the full-window viewport (reference 2)."""
+    and the full-window viewport (docs/semantics.md §2)."""
     x, y, z = p
     xn = (x / aspect) / -z
     yn = y / -z
@@ -468,7 +468,7 @@ def test_non_finite_vertex_drops_only_its_own_triangle_in_a_batch():
         expected = _other() | ref.rect_pixels(1, 8, 1, 8)
         got = _pixels(_read())
     assert got == expected
-    # the warning names a call (porting conventions 5)
+    # the warning names a call (docs/porting.md §4)
     assert any("v" in str(w.message).split(":")[0] for w in rec)
 
 

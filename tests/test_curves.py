@@ -1,11 +1,11 @@
-"""Curves and patches (reference section 17), the emulator's patch surfaces,
+"""Curves and patches (docs/semantics.md §17), the emulator's patch surfaces,
 the Utah teapot data and programs/teapot.py.
 
 Expectations are computed here, independently of the library: the basis
-matrices are typed in from the reference, P(t) = [t^3 t^2 t 1].M.G is
+matrices are typed in from the Programming Guide, P(t) = [t^3 t^2 t 1].M.G is
 evaluated with plain Python arithmetic (exact fractions where pixels are
 predicted), and drawn output is read back from a window whose ortho2 puts
-pixel centres on integer coordinates (reference 1.5: snapped lines are closed).
+pixel centres on integer coordinates (docs/semantics.md §1: snapped lines are closed).
 """
 import math
 from fractions import Fraction
@@ -23,7 +23,7 @@ from vgx_emulator.surfaces import patch_mesh
 ROOT = Path(__file__).resolve().parent.parent
 TEAPOT = ROOT / "programs" / "teapot.py"
 
-# The bases as printed in the Programming Guide (reference 17), rows as printed.
+# The bases as printed in the Programming Guide (docs/semantics.md §17), rows as printed.
 BEZ = [[-1, 3, -3, 1], [3, -6, 3, 0], [-3, 3, 0, 0], [1, 0, 0, 0]]
 CAR = [[-0.5, 1.5, -1.5, 0.5], [1, -2.5, 2, -0.5], [-0.5, 0, 0.5, 0], [0, 1, 0, 0]]
 BSP = [[-1 / 6, 3 / 6, -3 / 6, 1 / 6], [3 / 6, -6 / 6, 3 / 6, 0],

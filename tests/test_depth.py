@@ -1,9 +1,9 @@
-"""The z-buffer (reference section 5; Decisions 3 and 4).
+"""The z-buffer (docs/semantics.md §5).
 
 Depths are produced with ``ortho(-0.5, w-0.5, -0.5, h-0.5, -1, 1)``, whose z
-row gives normalized z ``zn = -z`` (reference 2, ortho), and the lsetdepth
+row gives normalized z ``zn = -z`` (docs/semantics.md §2, ortho), and the lsetdepth
 range maps ``zn`` to ``zs = (far+near)/2 + zn*(far-near)/2`` rounded to
-nearest (Decision 4).  Expected values are computed here from those rules;
+nearest (docs/semantics.md §5).  Expected values are computed here from those rules;
 z is read back with ``readsource(SRC_ZBUFFER)`` + ``lrectread``.
 """
 import math
@@ -69,7 +69,7 @@ def _c():
 
 
 def _zs(zn, near=ZMIN, far=ZMAX):
-    """Decision 4, exactly, rounded to nearest (no ties in these tests)."""
+    """docs/semantics.md §5, exactly, rounded to nearest (no ties in these tests)."""
     v = Fraction(far + near, 2) + Fraction(zn) * Fraction(far - near, 2)
     assert v - math.floor(v) != Fraction(1, 2), "tie: pick another zn"
     return math.floor(v + Fraction(1, 2))
@@ -266,7 +266,7 @@ def test_clear_leaves_z_alone():
                                       (0, 0x7FFFFF), (5000, -5000), (ZMAX, ZMIN)])
 @pytest.mark.parametrize("zn", [-1.0, -0.8125, -0.375, 0.3, 0.6875, 1.0])
 def test_lsetdepth_mapping(near, far, zn):
-    """Decision 4: zs = (far+near)/2 + zn*(far-near)/2, rounded to nearest."""
+    """docs/semantics.md §5: zs = (far+near)/2 + zn*(far-near)/2, rounded to nearest."""
     _window()
     lsetdepth(near, far)
     assert tuple(lgetdepth()) == (near, far)
@@ -304,7 +304,7 @@ def test_lsetdepth_near_and_far_planes():
 @pytest.mark.parametrize("order", ["near-first", "far-first"])
 def test_reversed_depth_range_with_gequal(order):
     """lsetdepth(ZMAX, ZMIN) + ZF_GEQUAL + clear to ZMIN: the nearer surface
-    wins whatever the drawing order (reference 5, the documented idiom)."""
+    wins whatever the drawing order (docs/semantics.md §5, the documented idiom)."""
     _window()
     lsetdepth(ZMAX, ZMIN)
     zbuffer(TRUE)
@@ -324,7 +324,7 @@ def test_reversed_depth_range_with_gequal(order):
 
 
 # --------------------------------------------------------------------------
-# reading z back (Decision 3)
+# reading z back (docs/semantics.md §5)
 
 def test_lrectread_z_is_signed_int32():
     _window()

@@ -1,5 +1,5 @@
 """Errors: GLError naming the call, no state change, lenient mode, clamping
-(porting conventions 5; reference 14; Decisions 13 and 14)."""
+(docs/porting.md §4; docs/semantics.md §14, §1)."""
 import numpy as np
 import pytest
 

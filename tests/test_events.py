@@ -1,5 +1,5 @@
-"""The event queue and the headless runner (reference section 13, porting
-conventions 4)."""
+"""The event queue and the headless runner (docs/semantics.md §13,
+docs/porting.md §5)."""
 import shutil
 import subprocess
 import sys

@@ -1,4 +1,4 @@
-"""Writemasks, blending, alpha test, logic op and dither (reference section 7).
+"""Writemasks, blending, alpha test, logic op and dither (docs/semantics.md §7).
 
 Expectations are computed here from the man-page formulas.
 """
@@ -261,7 +261,7 @@ def test_blendfunction_illegal_placements_raise_and_keep_state():
 
 
 def test_bf_sc_as_source_is_the_same_token_as_bf_dc():
-    """BF_SC and BF_DC share the value 2 [H]: as a source it can only mean
+    """BF_SC and BF_DC share the value 2 (gl.h): as a source it can only mean
     BF_DC, so 'BF_SC as source' cannot be told apart and is accepted."""
     assert BF_SC == BF_DC and BF_MSC == BF_MDC
     open_win(1, 1)

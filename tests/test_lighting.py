@@ -1,13 +1,13 @@
-"""Lighting (reference section 9; Decision 9) checked against the equation.
+"""Lighting (docs/semantics.md §9) checked against the equation.
 
 Every expected colour is computed here, by a small numpy implementation of
-the reference 9.5 equation for one vertex (``_expected``), from the
+the docs/semantics.md §9 equation for one vertex (``_expected``), from the
 properties the test itself passed to lmdef; nothing is taken from the
 library's lighting module.  Scene: a W x H window, ``mmode(MVIEWING)``,
 ``ortho(-0.5, W-0.5, -0.5, H-0.5, -100, 100)`` so that eye space is pixel
 space (x, y as pixel centres, the eye at the origin looking down -z).
 Polygons are flat-shaded, so the whole polygon shows the lighting of its
-**last** vertex (Decision 6), whose eye position and normal are known.  A
+**last** vertex (docs/semantics.md §3), whose eye position and normal are known.  A
 pixel is read back with lrectread (0xAABBGGRR) and compared per component
 within +-1 (rounding of clamp(C)*255).
 """
@@ -54,7 +54,7 @@ def _window(w=W, h=H):
 
 
 # ----------------------------------------------------------------------------
-# the reference 9.5 equation, one vertex, written independently of the library
+# the docs/semantics.md §9 equation, one vertex, written independently of the library
 
 MAT_DEFAULTS = {EMISSION: (0, 0, 0), AMBIENT: (.2, .2, .2), DIFFUSE: (.8, .8, .8),
                 SPECULAR: (0, 0, 0), SHININESS: (0,), ALPHA: (1,)}
@@ -99,7 +99,7 @@ def _unit(v):
 
 
 def _expected(p, n, m, lights, lm):
-    """Reference 9.5 for one vertex.  p: eye position (3,), n: unit eye normal,
+    """docs/semantics.md §9 for one vertex.  p: eye position (3,), n: unit eye normal,
     m: material props, lights: [(props, eye POSITION (4,), eye unit SPOTDIRECTION)],
     lm: model props.  Returns (r, g, b, a) bytes."""
     p = np.asarray(p, float)
@@ -197,7 +197,7 @@ def _check(m, lights, lm, normal=(0, 0, 1), z=0.0, tol=1):
 
 
 def test_default_definitions():
-    """Defaults of reference 9.2: 0.2*0.2 ambient + 0.8 diffuse from the
+    """Defaults of docs/semantics.md §9: 0.2*0.2 ambient + 0.8 diffuse from the
     default light behind the viewer = 0.84 -> 214, alpha 1."""
     _window()
     m, lights, lm = _define(mat(), [light()], model())
@@ -265,7 +265,7 @@ def test_specular_blinn_phong(shininess):
 
 
 def test_shininess_zero_disables_specular():
-    """SHININESS 0 turns the specular term off (Decision 9), even with a
+    """SHININESS 0 turns the specular term off (docs/semantics.md §9), even with a
     bright SPECULAR and the highlight exactly on the normal."""
     _window()
     m = _props(MAT_DEFAULTS, over={DIFFUSE: (0, 0, 0), AMBIENT: (0, 0, 0),
@@ -562,7 +562,7 @@ def test_spot_direction_transformed_at_lmbind():
 
 def test_one_definition_one_light_target():
     """A light definition is bound to one target at a time: binding it to
-    LIGHT1 takes it off LIGHT0 (reference 9.3), so it counts once."""
+    LIGHT1 takes it off LIGHT0 (docs/semantics.md §9), so it counts once."""
     _window()
     m, lights, lm = _define(mat(), [light()], model())
     lmbind(LIGHT0 + 1, 1)
@@ -571,7 +571,7 @@ def test_one_definition_one_light_target():
 
 
 def test_no_lighting_in_msingle():
-    """Lighting needs MVIEWING (reference 9.3; docs/decisions.md): in
+    """Lighting needs MVIEWING (docs/semantics.md §9; docs/decisions.md): in
     MSINGLE the current colour is drawn."""
     _window()
     mmode(MSINGLE)
@@ -715,7 +715,7 @@ def test_material_bind_discards_lmcolor_changes():
 
 @pytest.mark.parametrize("then", [LMC_COLOR, LMC_AMBIENT])
 def test_lmcolor_change_lasts_until_next_material_bind(then):
-    """Reference 9.4: LMC_DIFFUSE colour calls set the bound material's
+    """docs/semantics.md §9: LMC_DIFFUSE colour calls set the bound material's
     diffuse; the change is lost only at the next material bind, so it stays
     after lmcolor switches to another mode."""
     _window()
@@ -1049,7 +1049,7 @@ def test_material_zero_between_polygons_turns_lighting_off(monkeypatch):
 
 
 def test_colour_map_lighting_per_material_in_one_batch(monkeypatch):
-    """Colour-map lighting (reference 9.5): index = amb + (dif - amb) * D +
+    """Colour-map lighting (docs/semantics.md §9): index = amb + (dif - amb) * D +
     (spe - dif) * S.  Lit head-on (D = 1) with SHININESS 0 (S = 0) each
     polygon takes its own material's diffuse index, with the materials bound
     between polygons of one batch."""

@@ -1,5 +1,5 @@
 """Transformations, projections, matrix modes and stacks, viewport
-(reference sections 1.2-2, Decisions 7 and 8).
+(docs/semantics.md §1, §2).
 
 Every expected matrix is written out from the man-page formulas of the
 reference (row vectors, ``C <- T . C``), never taken from the library.

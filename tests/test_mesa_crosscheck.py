@@ -25,7 +25,7 @@ wmpack (0x00/0xFF bytes)    glColorMask
 How the two set-ups are made to agree:
 
 * Matrices: IRIS GL's row-vector Matrix has the same 16 floats in memory as
-  the OpenGL column-major matrix (reference 1.2), so the projection that
+  the OpenGL column-major matrix (docs/semantics.md §1), so the projection that
   ``ortho`` builds here is handed to Mesa as it is stored:
   ``glLoadMatrixf(getmatrix())``, with an identity ModelView.
 * Pixel centres: this emulator puts pixel (i, j)'s centre at window
@@ -34,7 +34,7 @@ How the two set-ups are made to agree:
   mapping.  The two half-pixel shifts cancel: with the *same* matrix an
   object point lands on the centre of the same pixel in both.  So no extra
   half-pixel offset is added to the GL projection.
-* Depth: the VGX z range is signed 24-bit (Decision 3); Mesa's is unsigned
+* Depth: the VGX z range is signed 24-bit (docs/semantics.md §5); Mesa's is unsigned
   24-bit.  ``zs = -0x800000 + (zn + 1) / 2 * 0xFFFFFF`` is the same affine map
   in both, so stored z values differ by exactly 0x800000 (up to rounding).
   Scenes use a few well separated z levels so that rounding never reorders
@@ -48,7 +48,7 @@ How the two set-ups are made to agree:
   compute the set of pixels whose centre lies on an edge and require every
   difference to be inside it (and count the differences).
 * Flat shading: IRIS GL takes the colour of the last vertex of a polygon
-  (Decision 6), OpenGL the first vertex of a GL_POLYGON; the GL polygon is
+  (docs/semantics.md §3), OpenGL the first vertex of a GL_POLYGON; the GL polygon is
   issued starting from IRIS GL's last vertex (same polygon, same colour).
   Triangle strips use the last vertex in both.
 * The window is at the screen origin, so IRIS GL's screen-aligned patterns
@@ -161,7 +161,7 @@ def _zval_to_gl(zval):
 def run_iris(ops, accum=False):
     """Render on the emulator; returns dict(colour uint32, z int64, stencil int64)."""
     from irisgl._current import machine
-    prefposition(0, W - 1, 0, H - 1)           # at the screen origin (Decision 15)
+    prefposition(0, W - 1, 0, H - 1)           # at the screen origin (docs/semantics.md §8)
     winopen("mesa-crosscheck")
     RGBmode()
     stensize(8)
@@ -317,7 +317,7 @@ def run_gl(ops, matrix):
             pass                                 # GL never snaps; scenes agree on it
         elif k == "poly":
             _, kind, verts, cols = op
-            # Decision 1: with the z-buffer off IRIS GL applies `pass` where
+            # docs/semantics.md §6: with the z-buffer off IRIS GL applies `pass` where
             # OpenGL applies its dppass (zpass): map it.
             if zon:
                 g.glStencilOp(GL_STOP[sops[0]], GL_STOP[sops[1]], GL_STOP[sops[2]])
@@ -581,7 +581,7 @@ def test_depth_sloped_planes(zf):
 
 
 # ======================================================================================
-# 2. stencil functions and operations (z-buffer on), and Decision 1 (z-buffer off)
+# 2. stencil functions and operations (z-buffer on), and docs/semantics.md §6 (z-buffer off)
 # ======================================================================================
 SFUNCS = [SF_NEVER, SF_LESS, SF_EQUAL, SF_LEQUAL, SF_GREATER, SF_NOTEQUAL, SF_GEQUAL,
           SF_ALWAYS]
@@ -648,7 +648,7 @@ def test_stencil_each_operation_saturates_like_gl(op):
 
 @pytest.mark.parametrize("seed", range(3))
 def test_stencil_with_zbuffer_off_maps_pass_to_gl_zpass(seed):
-    """Decision 1: with the z-buffer off IRIS GL applies `pass` (OpenGL its
+    """docs/semantics.md §6: with the z-buffer off IRIS GL applies `pass` (OpenGL its
     dppass).  Under that mapping the results are identical."""
     rng = np.random.default_rng(3000 + seed)
     ops = stencil_scene(rng, int(rng.choice(SFUNCS)), zbuf=False)
@@ -686,7 +686,7 @@ def test_blend_factors(s, d):
     alphas over a random destination: each channel within 1 (Mesa blends in
     8-bit fixed point, the emulator in floating point, both round).
     BF_MIN_SA_MDA: OpenGL's GL_SRC_ALPHA_SATURATE uses factor 1 for alpha;
-    the emulator applies min(SA, 1-DA) to alpha too (the reference gives the
+    the emulator applies min(SA, 1-DA) to alpha too (blendfunction(3G) gives the
     factor for RGBA and is silent on alpha), so alpha is not compared there."""
     rng = np.random.default_rng(4000 + 16 * s + d)
     ops = blend_scene(rng, s, d, layers=4)
@@ -870,7 +870,7 @@ def test_writemask_bytes(mask):
 
 @pytest.mark.parametrize("seed", range(3))
 def test_flat_shading_provoking_vertex(seed):
-    """FLAT: polygons take the last vertex's colour in IRIS GL (Decision 6),
+    """FLAT: polygons take the last vertex's colour in IRIS GL (docs/semantics.md §3),
     the first in a GL_POLYGON: the GL interpreter rotates the vertex list.
     Triangle meshes take the last vertex of each triangle in both."""
     rng = np.random.default_rng(7300 + seed)

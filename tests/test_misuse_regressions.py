@@ -247,7 +247,7 @@ def _all_kinds(v):
 @pytest.mark.parametrize("lit", [False, True])
 def test_nonfinite_geometry_gives_no_numpy_warning(open_window, lit):
     """NaN, infinities, 1e38 and w <= 0 through every primitive kind, with
-    every warning an error: only VGXWarnings (porting conventions 5), never
+    every warning an error: only VGXWarnings (docs/porting.md §4), never
     numpy's RuntimeWarning (sboxf(inf) gave 'invalid value in matmul')."""
     import warnings
     from vgx_emulator.errors import VGXWarning
@@ -315,7 +315,7 @@ def test_fuzzed_misuse_is_a_glerror_with_the_state_unchanged(open_window, call, 
 
 def test_pixel_words_of_any_size_are_reduced_as_c_converts_them(open_window):
     """A Python int beyond 32 bits in an lrectwrite or writeRGB array keeps
-    its low bits, as C's unsigned long / Colorindex conversion (Decision 13),
+    its low bits, as C's unsigned long / Colorindex conversion (docs/semantics.md §1),
     instead of an OverflowError."""
     open_window(8, 8)
     lrectwrite(0, 0, 1, 0, [2 ** 70 + 0xFF0000FF, 0xFF00FF00])

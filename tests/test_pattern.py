@@ -1,5 +1,5 @@
-"""defpattern(3G), setpattern(3G), getpattern(3G) (reference section 8,
-Decision 15): bit layout, screen-aligned tiling, what a 0 bit protects and
+"""defpattern(3G), setpattern(3G), getpattern(3G) (docs/semantics.md §8):
+bit layout, screen-aligned tiling, what a 0 bit protects and
 which primitives the pattern applies to."""
 import numpy as np
 import pytest
@@ -87,7 +87,7 @@ def test_defpattern_layout_and_tiling(size, words):
 
 @pytest.mark.parametrize("origin", [(5, 3), (17, 40), (100, 7)])
 def test_phase_follows_window_origin(origin):
-    """Decision 15: the pattern is tiled over the screen, so a window at an
+    """docs/semantics.md §8: the pattern is tiled over the screen, so a window at an
     origin that is not a multiple of 16 sees a shifted phase."""
     W, H = 20, 18
     open_win(W, H, origin=origin)

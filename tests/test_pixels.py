@@ -1,5 +1,5 @@
 """readsource, lrectread, rectread, lrectwrite, rectwrite, rectzoom, rectcopy
-(reference section 11, porting conventions 3, Decisions 3 and 11)."""
+(docs/semantics.md §11, §5; docs/porting.md §3)."""
 import numpy as np
 import pytest
 
@@ -109,7 +109,7 @@ def test_lrectwrite_wrong_size_raises_and_writes_nothing():
     assert (colour() == 0).all()
 
 
-# -- lrectwrite and the fragment operations (Decision 11) ---------------------------------
+# -- lrectwrite and the fragment operations (docs/semantics.md §11) ---------------------------------
 def test_lrectwrite_applies_writemask():
     open_win(2, 2)
     czclear(0x11223344, 0)

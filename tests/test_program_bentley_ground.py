@@ -7,7 +7,7 @@ Expected pictures are computed with numpy from the program's constants: each
 object polygon through the IRIS GL ground matrix, the z-up view (lookat then
 rotate(-900, 'x')) and the perspective, to window coordinates; the union of
 the projected polygons per light is that light's shadow.  Ground colours come
-from the lighting equation (reference 9.5): ambient Am*Alm, plus Dm*Ci*N.L for
+from the lighting equation (docs/semantics.md §9): ambient Am*Alm, plus Dm*Ci*N.L for
 each light that sees the pixel.
 """
 

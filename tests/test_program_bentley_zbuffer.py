@@ -33,7 +33,7 @@ def run(figure, *extra):
     return img[::-1].astype(int)          # row 0 at the bottom, as in IRIS GL
 
 
-# -- the eye, rebuilt from the reference's matrix conventions ---------------------
+# -- the eye, rebuilt from the matrix conventions of docs/semantics.md §1 ------------------
 
 
 def camera(eye, ref):

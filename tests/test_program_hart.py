@@ -5,7 +5,7 @@ mapping z_window = ALPHA + BETA / z_eye.
 
 Expected places are computed here with numpy from the program's constants:
 the sphere's centre projected from the light onto the ground, then through
-the eye's lookat and perspective (reference section 2) to window pixels.
+the eye's lookat and perspective (docs/semantics.md §2) to window pixels.
 """
 import ast
 import re
@@ -27,7 +27,7 @@ W, HT = H.WIDTH, H.HEIGHT
 ZMIN, ZMAX = -0x800000, 0x7FFFFF
 
 
-# -- camera (reference section 2, row vectors) ----------------------------------
+# -- camera (docs/semantics.md §2, row vectors) ----------------------------------
 
 
 EYE_MVP = lookat_matrix(H.EYE, H.EYE_AT) @ perspective_matrix(H.FOVY, W / HT, H.NEAR, H.FAR)

@@ -3,11 +3,11 @@ and the halftone shadows they draw.
 
 The expected pictures are computed here with numpy from the program's own
 constants: the chair's polygons go through position_object, the shadow
-matrix, lookat and perspective (reference sections 1.2-2) to window
+matrix, lookat and perspective (docs/semantics.md §1, §2) to window
 coordinates, and the union of the projected faces is the shadow's outline.
 Pixels well inside it (and not behind the chair) must show the halftone:
 black exactly where the 16x16 checker has a 1 bit, at the screen phase of
-the window (origin (0, 0), Decision 15), ground colour elsewhere; pixels
+the window (origin (0, 0), docs/semantics.md §8), ground colour elsewhere; pixels
 well outside must be ground colour.  The stability cases are checked
 against an exact float64 ray cast from each ground pixel to the light.
 """
@@ -30,7 +30,7 @@ GROUND = np.array(T.GROUND_RGB)
 MARGIN = 2                      # pixels: vertex snapping moves edges by <= 0.5 px
 
 
-# -- the camera, from the reference's formulas ----------------------------------
+# -- the camera, from lookat(3G) and perspective(3G) ---------------------------
 def rot_y(deg):
     c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
     return np.array([[c, 0, -s, 0], [0, 1, 0, 0], [s, 0, c, 0], [0, 0, 0, 1]])
@@ -277,7 +277,7 @@ def test_local_shadow_is_larger_than_the_parallel_one():
     assert local.sum() > 1.2 * far.sum()
 
 
-# -- stability (pitfalls a.5) ------------------------------------------------------
+# -- stability: a local light below the top of the object (docs/stability.md) ------
 def check_no_inverted_shadow(img, light):
     black = (img == 0).all(axis=2)
     on_ground, g = ground_pixels()

@@ -251,7 +251,7 @@ def test_runner_ends_a_loop_that_only_polls_qtest(tmp_path):
     """GL reference examples (curve1.c) loop on `if (qtest())` and draw only
     on REDRAW, single-buffered, never marking a frame.  qtest(3G) does not
     wait, so with nothing left to come the runner must still end the
-    program (porting conventions: a program waiting for input must not
+    program (docs/porting.md: a program waiting for input must not
     hang headless), keeping what it drew."""
     from vgx_emulator import run_program
     prog = tmp_path / "poll.py"

@@ -3,7 +3,7 @@
 Expected pixel sets come from ``tests/reference/raster.py`` (the documented
 fill rule, computed with fractions), never from the emulator.  Window
 coordinates equal object coordinates through ``ortho2(-0.5, w-0.5, -0.5,
-h-0.5)`` (reference 2), so a vertex given at (x, y) lands at window (x, y).
+h-0.5)`` (docs/semantics.md §2), so a vertex given at (x, y) lands at window (x, y).
 Watertightness is checked two ways: each triangle drawn alone equals its
 reference set, and the whole mesh drawn in one batch with additive blending
 (``blendfunction(BF_ONE, BF_ONE)``, red 1 per triangle) counts every pixel
@@ -16,7 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from irisgl import *  # noqa: F401,F403  (the C names, porting conventions 1)
+from irisgl import *  # noqa: F401,F403  (the C names, docs/porting.md §1)
 from irisgl import (FALSE, FLAT, GOURAUD, TRUE, BF_ONE, BF_ZERO, backface, bgnclosedline,
                     bgnline, bgnpoint, bgnpolygon, bgnqstrip, bgntmesh, blendfunction,
                     c3i, clear, concave, cpack, draw2i, endclosedline, endline,
@@ -372,7 +372,7 @@ def test_snapped_random_grid_is_watertight():
 
 def test_qstrip_grid_rows_are_watertight():
     """The same jittered grid drawn as one qstrip per row: quads
-    (2k, 2k+1, 2k+3, 2k+2) of the vertex stream (reference 3.2)."""
+    (2k, 2k+1, 2k+3, 2k+2) of the vertex stream (docs/semantics.md §3)."""
     _window()
     subpixel(TRUE)
     rnd = random.Random(3)
@@ -398,7 +398,7 @@ def test_qstrip_grid_rows_are_watertight():
 
 
 # --------------------------------------------------------------------------
-# culling (reference 3.4: by screen winding)
+# culling (docs/semantics.md §3: by screen winding)
 
 CCW = [(4, 4), (24, 6), (10, 26)]
 CW = CCW[::-1]
@@ -422,7 +422,7 @@ def test_backface_frontface_by_screen_winding(bf, ff, ccw_drawn, cw_drawn):
 
 def test_backface_uses_screen_winding_after_a_mirror():
     """scale(-1, 1, 1) mirrors: a triangle CCW in object space is CW on the
-    screen and is removed by backface(TRUE) (reference 2, scale)."""
+    screen and is removed by backface(TRUE) (docs/semantics.md §2, scale)."""
     _window()
     backface(TRUE)
     ortho2(W - 0.5, -0.5, -0.5, H - 0.5)          # x mirrored
@@ -451,7 +451,7 @@ ZIGZAG = [(2, 4), (2, 20), (9, 3), (10, 22), (18, 5), (17, 21), (27, 4), (28, 24
 
 @pytest.mark.parametrize("flip", [False, True])
 def test_tmesh_strip_triangles_and_winding(flip):
-    """No swaps = strip; each triangle is (R0, R1, new) (reference 3.2 [S]);
+    """No swaps = strip; each triangle is (R0, R1, new) (docs/semantics.md §3 [S]);
     culling follows each triangle's screen winding."""
     pts = [(x, H - 1 - y) for x, y in ZIGZAG] if flip else ZIGZAG
     tris = [[pts[i] for i in t] for t in ref.tmesh_triangles(_strip_events(len(pts)))]
@@ -573,7 +573,7 @@ def test_trailing_swaptmesh_at_the_end_of_a_batch():
 
 def test_swaptmesh_before_the_second_vertex_does_not_crash():
     """bgntmesh; v0; swaptmesh; v1; v2; v3: with the register model of
-    reference 3.2, v1 replaces v0 in R0 and only (v1, v2, v3) is drawn.  At
+    docs/semantics.md §3, v1 replaces v0 in R0 and only (v1, v2, v3) is drawn.  At
     the least the flush must not crash, and a polygon of the same batch must
     still be drawn."""
     _window()
@@ -626,7 +626,7 @@ def _colour(img, p):
 
 
 def test_flat_polygon_takes_the_last_vertex_colour():
-    """Decision 6: FLAT, a polygon takes the colour of its last vertex."""
+    """docs/semantics.md §3: FLAT, a polygon takes the colour of its last vertex."""
     _window()
     shademodel(FLAT)
     _blank()
@@ -687,7 +687,7 @@ def test_gouraud_is_barycentric_at_pixel_centres():
 
 
 # --------------------------------------------------------------------------
-# subpixel(FALSE) snapping (reference 1.5, Decision 5)
+# subpixel(FALSE) snapping (docs/semantics.md §1)
 
 def test_snapping_rounds_to_nearest_pixel_centre():
     _window()
@@ -775,7 +775,7 @@ def test_polf_forms():
 
 
 # --------------------------------------------------------------------------
-# lines and points (reference 1.5)
+# lines and points (docs/semantics.md §1)
 
 def test_snapped_lines_are_closed():
     _window()
@@ -881,7 +881,7 @@ def test_points_fill_the_nearest_pixel(subpix):
 
 
 def test_flat_line_segments_take_their_last_vertex_colour():
-    """Decision 6: each segment of a FLAT polyline has the colour of its end
+    """docs/semantics.md §3: each segment of a FLAT polyline has the colour of its end
     vertex.  Sub-pixel (half-open) segments do not share pixels."""
     _window()
     subpixel(TRUE)

@@ -4,8 +4,8 @@ One test (or parametrised group) per row of ``docs/stability.md``.  Every
 expectation is computed here, independently of the library: pixel sets from
 the analytic geometry (float64 numpy, with a 0.02-pixel margin where an edge
 is only known to the rasterizer's 1/256 of a pixel), exact stencil counts
-from ray casts, z decisions from the depth mapping of reference section 5
-(Decision 4), fill-rule coverage from ``tests/reference/raster.py`` or its
+from ray casts, z decisions from the depth mapping of docs/semantics.md §5
+(docs/semantics.md §5), fill-rule coverage from ``tests/reference/raster.py`` or its
 vectorised twin ``cover`` below (checked against it).
 
 ``python -m tests.test_stability`` (from the repository root) prints the
@@ -17,7 +17,7 @@ import warnings
 import numpy as np
 import pytest
 
-from irisgl import *  # noqa: F401,F403  (the C names, porting conventions 1)
+from irisgl import *  # noqa: F401,F403  (the C names, docs/porting.md §1)
 from irisgl import GLError
 from vgx_emulator import VGXWarning
 
@@ -431,7 +431,7 @@ def test_zfail_with_a_finite_far_plane_miscounts(far):
 # ==================================================================================
 # 3. more overlapping volumes than the 8-bit stencil counts around MYZERO
 def saturating(start, ops, top=255):
-    """The VGX stencil arithmetic (ST_INCR/ST_DECR clamp, reference 6)."""
+    """The VGX stencil arithmetic (ST_INCR/ST_DECR clamp, docs/semantics.md §6)."""
     s = start
     for op in ops:
         s = min(s + 1, top) if op == ST_INCR else max(s - 1, 0)
@@ -494,7 +494,7 @@ def z_range(bits):
 
 
 def depth_constant(near, bits):
-    """K of zw = const - K / d (d = eye depth), perspective(3G) + Decision 4."""
+    """K of zw = const - K / d (d = eye depth), perspective(3G) + docs/semantics.md §5."""
     lo, hi = z_range(bits)
     return DFAR * near * (hi - lo) / (DFAR - near)
 
@@ -1070,7 +1070,7 @@ def test_nan_projection_drops_everything_until_replaced():
 # 9. singular matrices with lighting on
 def lighting_colour(n_dot_l):
     """Default material and model, one white light: 0.2 * 0.2 ambient plus
-    0.8 * max(N.L, 0) diffuse, 0..255 rounded (reference 9.5)."""
+    0.8 * max(N.L, 0) diffuse, 0..255 rounded (docs/semantics.md §9)."""
     return round((0.04 + 0.8 * max(n_dot_l, 0.0)) * 255)
 
 

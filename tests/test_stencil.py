@@ -1,5 +1,4 @@
-"""stencil(3G), swritemask(3G), sclear(3G), stensize(3G) (reference section 6,
-Decisions 1 and 2).
+"""stencil(3G), swritemask(3G), sclear(3G), stensize(3G) (docs/semantics.md §6).
 
 Expectations come from a small independent model of the man-page rules
 (``st_test``/``st_op`` below), never from the library's kernels.
@@ -65,7 +64,7 @@ FUNCS = {
 
 def st_test(func, ref, stored, mask, planes=8):
     smax = (1 << planes) - 1
-    ref = min(max(ref, 0), smax)                     # Decision 2: clamp
+    ref = min(max(ref, 0), smax)                     # docs/semantics.md §6: clamp
     return FUNCS[func](ref & mask, stored & mask)    # ref on the left
 
 
@@ -161,7 +160,7 @@ def test_stencil_function_ref_on_left(func, ref, mask, stored):
     open_win(8, 2)
     set_columns(stored)
     czclear(0, 0)
-    # z-buffer off: fail -> INVERT, pass -> INCR (Decision 1)
+    # z-buffer off: fail -> INVERT, pass -> INCR (docs/semantics.md §6)
     stencil(TRUE, ref, func, mask, ST_INVERT, ST_INCR, ST_ZERO)
     cpack(RED)
     box(0, 0, 7, 1)
@@ -175,7 +174,7 @@ def test_stencil_function_ref_on_left(func, ref, mask, stored):
 
 
 def test_sf_less_means_ref_less_than_stored():
-    """Decision 2 spelled out: SF_LESS passes where ref < stored."""
+    """docs/semantics.md §6 spelled out: SF_LESS passes where ref < stored."""
     open_win(3, 1)
     set_columns([4, 5, 6])
     stencil(TRUE, 5, SF_LESS, 0xFF, ST_KEEP, ST_KEEP, ST_KEEP)
@@ -298,7 +297,7 @@ def test_three_outcomes_with_zbuffer_on():
 
 
 def test_zbuffer_off_applies_pass_not_zpass_and_writes_colour():
-    """Decision 1: with the z-buffer off, a passing stencil test applies
+    """docs/semantics.md §6: with the z-buffer off, a passing stencil test applies
     ``pass`` (zpass is not significant) and the colour is written."""
     open_win(4, 4)
     sclear(10)

@@ -1,15 +1,15 @@
-"""Texture mapping (reference section 16, docs/decisions.md "texture ..." rows).
+"""Texture mapping (docs/semantics.md §16, docs/decisions.md "texture ..." rows).
 
-Every expected value is computed here from the reference rules, never read
+Every expected value is computed here from the rules of docs/semantics.md §16, never read
 back from the emulator's tables:
 
 * texel (i, j) covers s in [i/W, (i+1)/W), t in [j/H, (j+1)/H); image row 0 is
-  the bottom row, (0, 0) maps to texture (0, 0) (reference 16);
+  the bottom row, (0, 0) maps to texture (0, 0) (docs/semantics.md §16);
 * a window of w x h pixels keeps winopen's ``ortho2(-0.5, w-0.5, -0.5, h-0.5)``,
   so pixel (i, j) has its centre at object (i, j); quads run from -0.5 to w-0.5
   with ``subpixel(TRUE)``, so no pixel centre lies on an edge and pixel i sees
   s = s0 + (i + 0.5) / w * (s1 - s0);
-* words read back are 0xAABBGGRR (porting conventions 3).
+* words read back are 0xAABBGGRR (docs/porting.md §3).
 
 The incoming colour is white (alpha 255) unless a test says otherwise, so with
 TV_MODULATE the pixel equals the texel.
@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from irisgl import *  # noqa: F401,F403  (the C names, porting conventions 1)
+from irisgl import *  # noqa: F401,F403  (the C names, docs/porting.md §1)
 from irisgl import GLError
 
 
@@ -109,7 +109,7 @@ def wrap_index(k, n, repeat):
 
 
 def point_texel(s, t, w, h, rs=True, rt=True):
-    """Reference 16: POINT = the texel under (s, t); CLAMP clamps to the edges."""
+    """docs/semantics.md §16: POINT = the texel under (s, t); CLAMP clamps to the edges."""
     if not rs:
         s = min(max(s, 0.0), 1.0)
     if not rt:
@@ -118,7 +118,7 @@ def point_texel(s, t, w, h, rs=True, rt=True):
 
 
 def bilinear(tex, s, t, rs=True, rt=True):
-    """Reference 16 (OpenGL LINEAR): weights of the four nearest texel centres."""
+    """docs/semantics.md §16 (OpenGL LINEAR): weights of the four nearest texel centres."""
     h, w = tex.shape[:2]
     if not rs:
         s = min(max(s, 0.0), 1.0)
@@ -413,7 +413,7 @@ def draw_env(open_window, nc, env_props):
 
 
 def expected_env(env, nc, const=(1.0, 1.0, 1.0, 1.0)):
-    """Reference 16, Tables 18-7..18-9 (Cin, Ctex, Cconst in 0..1)."""
+    """docs/semantics.md §16, the environment table (Cin, Ctex, Cconst in 0..1)."""
     comps, _ = env_texel(nc)
     cin = np.array(CIN) / 255.0
     c = [v / 255.0 for v in comps]

@@ -1,5 +1,4 @@
-"""Windows and framebuffer configuration (reference sections 4, 13, 15, 20;
-Decisions 3, 12, 15)."""
+"""Windows and framebuffer configuration (docs/semantics.md §4, §13, §15, §20, §5, §8)."""
 import numpy as np
 import pytest
 
@@ -35,7 +34,7 @@ def test_prefsize_sets_size_origin_defaults_to_screen_origin():
     prefsize(64, 48)
     winopen("x")
     assert getsize() == (64, 48)
-    assert getorigin() == (0, 0)          # Decision 15
+    assert getorigin() == (0, 0)          # docs/semantics.md §8
 
 
 def test_prefposition_sets_size_and_origin():

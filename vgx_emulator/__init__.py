@@ -1,6 +1,6 @@
 """vgx_emulator: the emulated IRIS-4D VGX behind :mod:`irisgl`.
 
-Non-IRIS-GL entry points (porting conventions 1): the machine, the runner,
+Non-IRIS-GL entry points (docs/porting.md §1): the machine, the runner,
 PNG output, the error mode.
 """
 from .errors import GLError, VGXWarning, error_mode, set_error_mode

@@ -5,7 +5,7 @@ no other module hard-codes a compiler flag or a fixed-point width.
 """
 import os
 
-#: Fractional bits of window coordinates handed to the rasterizer (Decision 5
+#: Fractional bits of window coordinates handed to the rasterizer (docs/semantics.md §1
 #: asks for at least 4).  8 bits keep sub-pixel vertices close to their float
 #: position while edge functions stay far inside int64 (see scan/fixed.py).
 SUBPIXEL_BITS = 8
@@ -65,7 +65,7 @@ PARALLEL_MIN_PIXELS = 1 << 18
 SHARES_PER_THREAD = 4
 
 #: numba flags.  fastmath stays off: the NaN/inf guards and exact integer
-#: edge tests must not be compiled away (pitfalls c.3).
+#: edge tests must not be compiled away (docs/architecture.md, Kernels).
 JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,
                    boundscheck=False)
 
@@ -75,7 +75,7 @@ JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,
 #: everything on one.
 PARALLEL = os.environ.get("VGX_PARALLEL", "1") != "0"
 
-#: Virtual screen of the VGX (porting conventions section 4).
+#: Virtual screen of the VGX (docs/porting.md §5).
 SCREEN_WIDTH = 1280
 SCREEN_HEIGHT = 1024
 
@@ -89,5 +89,5 @@ QUEUE_LENGTH = 101
 MAX_POLYGON_VERTICES = 256
 
 #: Error mode: "strict" raises GLError, "lenient" prints "GL: ..." on stderr
-#: and ignores the call (Decision 14).  VGX_ERRORS=lenient selects it.
+#: and ignores the call (docs/semantics.md §14).  VGX_ERRORS=lenient selects it.
 ERROR_MODE = os.environ.get("VGX_ERRORS", "strict")

@@ -1,4 +1,4 @@
-"""GLError and the strict/lenient switch (porting conventions 5, Decision 14)."""
+"""GLError and the strict/lenient switch (docs/porting.md §4, docs/semantics.md §14)."""
 import sys
 import warnings
 

@@ -1,10 +1,10 @@
 """The device queue behind qdevice/qread/qtest/qenter, and the input devices
-it reports (reference section 13, docs/windows-and-devices.md).
+it reports (docs/semantics.md §13, docs/windows-and-devices.md).
 
 The queue holds 101 entries; a full queue drops the event and queues QFULL.
 With no real window to wait on, a ``qread`` on an empty queue cannot block
 forever: it raises :class:`QueueExhausted`, a ``SystemExit`` with code 0, so
-a ported program ends cleanly (porting conventions 4) and the runner, which
+a ported program ends cleanly (docs/porting.md §5) and the runner, which
 catches it, saves what the program drew.
 
 Device numbers follow the partition of qenter(3G): SGI buttons 0x0001-0x00FF

@@ -185,7 +185,7 @@ class VGX:
         self.maps = display.MapState()  # pop-up/overlay/underlay/cursor maps, setmap, blink
 
     # ------------------------------------------------------------------
-    # windows and configuration (reference 4, 13)
+    # windows and configuration (docs/semantics.md §4, §13)
     def window(self, call):
         """The current window, or GLError for a call before winopen."""
         if self.current is None:
@@ -376,7 +376,7 @@ class VGX:
     def _texturing(self, win):
         """(Texture, parameters) when texturing is on: a texture != 0 bound to
         TX_TEXTURE_0 and an environment != 0 to TV_ENV0, in RGB mode
-        (reference 16); otherwise None."""
+        (docs/semantics.md §16); otherwise None."""
         from . import texture as T
         from .raster import texture as RT
         st = win.st
@@ -445,7 +445,7 @@ class VGX:
         return key, variants.banks(key, fb, targets, pat), ip
 
     # ------------------------------------------------------------------
-    # primitives (reference 3.2)
+    # primitives (docs/semantics.md §3)
     def begin(self, win, kind, call):
         """bgnpolygon(3G) and the other bgn* calls: open a primitive of
         ``kind``; the handles of the per-vertex calls now append to it."""
@@ -622,7 +622,7 @@ class VGX:
         b.xf_dirty = True
 
     # ------------------------------------------------------------------
-    # lighting (reference 9)
+    # lighting (docs/semantics.md §9)
     def lmdef(self, deftype, index, props):
         """Store a definition; ``props`` None resets it to the defaults.
         Redefining a bound definition takes effect immediately, so every
@@ -681,7 +681,7 @@ class VGX:
                                                     st.matrices.modelview_matrix())
 
     # ------------------------------------------------------------------
-    # clears (reference 3.3, 5)
+    # clears (docs/semantics.md §3, §5)
     def clear_rect(self, win):
         st = win.st
         return _intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1))
@@ -762,7 +762,7 @@ class VGX:
         return (a << 24) | (b << 16) | (g << 8) | r
 
     # ------------------------------------------------------------------
-    # accumulation buffer (reference 10)
+    # accumulation buffer (docs/semantics.md §10)
     def acbuf(self, win, op, value):
         from .framebuffer import accum as A
         self._flush(win)
@@ -788,7 +788,7 @@ class VGX:
             self.trace_hook(self, win, "acbuf", op, float(value))
 
     # ------------------------------------------------------------------
-    # reading pixels (reference 11)
+    # reading pixels (docs/semantics.md §11)
     def read_bank(self, win, source):
         fb = win.fb
         if source == SRC_AUTO and win.st.drawmode in layers.LAYERS:
@@ -819,7 +819,7 @@ class VGX:
         return out
 
     def write_pixels(self, win, x1, y1, words, zoom):
-        """lrectwrite/rectwrite: words (h, w), row 0 at y1 (Decision 11)."""
+        """lrectwrite/rectwrite: words (h, w), row 0 at y1 (docs/semantics.md §11)."""
         from .scan.spans import pixel_kernel
         self._flush(win)
         if self._picking(win) or self.clear_rect(win) is None:

@@ -1,4 +1,4 @@
-"""Display lists (objects): recording, compiling, replay (reference section 12).
+"""Display lists (objects): recording, compiling, replay (docs/semantics.md §12).
 
 Between ``makeobj`` and ``closeobj`` the IRIS GL calls are recorded, not
 executed (queries and immediate-only calls still execute, see

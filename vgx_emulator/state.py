@@ -3,7 +3,7 @@
 Calls set fields here (after validation); the machine derives what the
 pipeline needs (combined matrices, eye-space lights, the raster key) when a
 batch is flushed.  Initial values are those of a freshly opened window
-(reference 15 "Initial state", section 4 for gconfig).
+(docs/semantics.md §15; §4 for gconfig).
 """
 from .framebuffer import ZMAX, ZMIN
 from .geometry.fog import FogState

@@ -1,6 +1,6 @@
 """Texture definitions (texdef2d, tevdef) and their packing for the kernels.
 
-Reference section 16.  A texture is kept as RGBA uint8 levels (level 0 the
+docs/semantics.md §16.  A texture is kept as RGBA uint8 levels (level 0 the
 image, then each level halved by a 2x2 box filter down to 1x1), packed into
 one flat (n, 4) array with a level table, so the raster kernels take plain
 arrays.  Components are stored so that one formula serves every component
@@ -11,7 +11,7 @@ Image layout (texdef2d(3G)): texels left to right, rows bottom to top, 8-bit
 components packed back to back, each row starting on a 32-bit word; in
 ``unsigned long`` words the first byte is the most significant, so byte order
 per texel is I / A I / B G R / A B G R.  Sizes that are not powers of two are
-resampled bilinearly to the next power of two ([S], reference 16).
+resampled bilinearly to the next power of two ([S], docs/semantics.md §16).
 """
 import math
 

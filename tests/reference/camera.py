@@ -1,4 +1,4 @@
 """The reference's viewing matrices rebuilt in float64, independent of the
-library (reference section 2; row vectors, p' = p . M): the shadow study's
+library (docs/semantics.md §2; row vectors, p' = p . M): the shadow study's
 (study/reference.py), one copy for the study and the tests."""
 from study.reference import lookat_matrix, perspective_matrix  # noqa: F401

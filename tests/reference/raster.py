@@ -1,6 +1,6 @@
 """Per-pixel reference model of scan conversion (independent of the library).
 
-Rules modelled (irisgl-reference.md 1.5, 2, 3.2, Decisions 5 and 6; the fill
+Rules modelled (docs/semantics.md §1, §2, §3; the fill
 rule documented for the emulator):
 
 * window coordinates, y up; pixel (i, j) is sampled at its centre, the point
@@ -124,7 +124,7 @@ def barycentric(a, b, c, px, py):
 
 
 def tmesh_triangles(n_or_events):
-    """Triangles of a tmesh (reference 3.2): two registers and a replace
+    """Triangles of a tmesh (docs/semantics.md §3): two registers and a replace
     pointer; each vertex after the first two draws (R0, R1, new), then
     replaces the register the pointer selects, and the pointer toggles;
     ``'swap'`` toggles the pointer.  Argument: a list of vertex indices and
@@ -144,7 +144,7 @@ def tmesh_triangles(n_or_events):
 
 
 def qstrip_quads(n):
-    """Quads of a qstrip of n vertices: (2k, 2k+1, 2k+3, 2k+2) (reference 3.2)."""
+    """Quads of a qstrip of n vertices: (2k, 2k+1, 2k+3, 2k+2) (docs/semantics.md §3)."""
     return [(2 * k, 2 * k + 1, 2 * k + 3, 2 * k + 2) for k in range((n - 2) // 2)]
 
 

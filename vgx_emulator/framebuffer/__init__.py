@@ -20,7 +20,7 @@ Colour words are packed ``0xAABBGGRR`` in RGB mode and hold the colour index
 in colour-map mode.  Row 0 is the bottom row of the window (IRIS GL's origin
 is the lower left), so ``plane[y, x]`` is window pixel (x, y).
 The z plane holds the signed 24-bit VGX value sign-extended in an int32
-(Decision 3).  Its per-segment maxima (zmax.py) are an aid of the emulator,
+(docs/semantics.md §5).  Its per-segment maxima (zmax.py) are an aid of the emulator,
 not a VGX bank: built from z only when a pass can use them.
 """
 import numpy as np

@@ -1,4 +1,4 @@
-"""The accumulation buffer and acbuf(3G) (reference section 10, Decision 10).
+"""The accumulation buffer and acbuf(3G) (docs/semantics.md §10).
 
 16 bits per component, signed (-32768..32767), RGBA, as (h, w, 4) int16 in
 R, G, B, A order.  Every operation is bounded by viewport ∩ scrmask ∩ window.
@@ -6,7 +6,7 @@ R, G, B, A order.  Every operation is bounded by viewport ∩ scrmask ∩ window
 =================== =========================================================
 AC_CLEAR            every component := round(value), clamped to the range
 AC_ACCUMULATE       += round(component * value), value clamped to -256..256,
-                    pixels read from readsource; overflow wraps (Decision 10)
+                    pixels read from readsource; overflow wraps (docs/semantics.md §10)
 AC_CLEAR_ACCUMULATE clear to 0, then AC_ACCUMULATE
 AC_RETURN           clamp(round(acc * value), 0, 255) with value clamped to
                     0..1, written to every enabled colour buffer under the

@@ -71,7 +71,7 @@ def _same_rows(C, tris):
 
 def lighting_active(st, defs):
     """Lighting is computed only while MATERIAL != 0 and LMODEL != 0, in
-    MVIEWING (lmbind(3G), reference 9.3)."""
+    MVIEWING (lmbind(3G), docs/semantics.md §9)."""
     return (st.material != 0 and st.lmodel != 0 and st.matrices.mode == MVIEWING
             and st.material in defs[lighting.DEFMATERIAL]
             and st.lmodel in defs[lighting.DEFLMODEL])
@@ -108,7 +108,7 @@ def _materials(st, defs, mats):
 
 
 def _light(st, defs, eye4, attrs, xf, xforms, mats):
-    """Front and back colours of every vertex (reference 9).  Each vertex is
+    """Front and back colours of every vertex (docs/semantics.md §9).  Each vertex is
     lit with the material bound when it was sent (attribute column 13)."""
     col = attrs[:, 3:7].copy()
     if not lighting_active(st, defs):
@@ -150,7 +150,7 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
 
 def texture_coordinates(st, pos, eye4, attrs, xf, xforms):
     """(N, 2) texture coordinates: t*() values, texgen replacements, the
-    texture matrix, divided by q (reference 16)."""
+    texture matrix, divided by q (docs/semantics.md §16)."""
     tc = attrs[:, 9:13].copy()
     for coord, (mode, plane, enabled) in st.texgen.items():
         if not enabled:

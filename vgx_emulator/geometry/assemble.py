@@ -1,6 +1,6 @@
 """Primitive assembly: bgn/end streams -> triangle, segment and point indices.
 
-Reference section 3.2, Decision 6.  Everything is vectorised over the batch:
+docs/semantics.md §3.  Everything is vectorised over the batch:
 
 - polygon with n vertices: fan (0, i, i+1); provoking vertex = the polygon's
   last vertex (FLAT shading takes its colour).

@@ -1,7 +1,7 @@
 """Homogeneous clipping of triangles, segments and points.
 
 A vertex (x, y, z, w) in clip space is inside when every plane distance is
->= 0 (reference section 2, "geometry behind the eye never wraps"):
+>= 0 (docs/semantics.md §2, "geometry behind the eye never wraps"):
 
 =====  ==============  ======================================
 plane  distance        why

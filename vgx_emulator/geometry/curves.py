@@ -1,4 +1,4 @@
-"""Curves and patches of the old IRIS GL (reference section 17).
+"""Curves and patches of the old IRIS GL (docs/semantics.md §17).
 
 Curve segment (curvebasis, curveprecision, crv/rcrv)::
 
@@ -6,7 +6,7 @@ Curve segment (curvebasis, curveprecision, crv/rcrv)::
 
 drawn as ``n = curveprecision`` straight lines through the points t = k/n.
 IRIS GL computes those points by forward differencing (M = E . Mb . G with
-the E of the reference); this module evaluates the same cubic directly, which
+the E of curveprecision(3G)); this module evaluates the same cubic directly, which
 gives the same points up to float rounding (forward differencing
 accumulates error, direct evaluation does not).
 
@@ -19,7 +19,7 @@ curves: ``ucurves`` curves along u at v = k/(ucurves-1) and ``vcurves``
 curves along v at u = k/(vcurves-1) (edges included), each curve a line strip
 with a segment count that is the smallest multiple of (the other direction's
 curve count - 1) not below its precision, so the curves cross at vertices
-(reference 17, the [S] reading of patchcurves/patchprecision).
+(docs/semantics.md §17, the [S] reading of patchcurves/patchprecision).
 
 Beyond IRIS GL, :func:`patch_surface` tessellates the same patch into a grid
 of points with unit normals (from the u and v derivatives) so that programs

@@ -1,6 +1,6 @@
 """Lighting: definitions (lmdef), bindings (lmbind) and the lighting equation.
 
-Reference section 9; Decisions 9.  Per vertex, in eye space, RGB mode::
+docs/semantics.md §9.  Per vertex, in eye space, RGB mode::
 
     C = Em + Am*Alm + sum_i Att_i * Spot_i * (Am*Ali + Dm*Ci*max(N.Li, 0)
                                               + Sm*Ci*max(N.Hi, 0)**sh)
@@ -8,7 +8,7 @@ Reference section 9; Decisions 9.  Per vertex, in eye space, RGB mode::
 
 Em/Am/Dm/Sm: material EMISSION/AMBIENT/DIFFUSE/SPECULAR; Alm: model AMBIENT;
 Ali: light AMBIENT; Ci: light LCOLOR; sh: SHININESS (0 turns the specular term
-off, Decision 9).  Li is the unit vector to the light (its direction when
+off, docs/semantics.md §9).  Li is the unit vector to the light (its direction when
 POSITION has w = 0); Hi = normalize(Li + V), V = (0, 0, 1) unless LOCALVIEWER.
 Att_i = 1 / (k0 + k1 d + k2 d^2) for local lights only (model ATTENUATION,
 ATTENUATION2); Spot_i = max(-Li.D, 0)**exponent inside the spread, 0 outside,
@@ -16,7 +16,7 @@ ATTENUATION2); Spot_i = max(-Li.D, 0)**exponent inside the spread, 0 outside,
 Choice where the sources are silent (documented in docs/decisions.md): the
 specular term is 0 where N.Li <= 0, as in the GL Programming Guide's form.
 TWOSIDE lights back faces with -N and BACKMATERIAL (MATERIAL when none bound).
-Colour-map lighting (reference 9.5): index = amb + (diff-amb)*D + (spec-diff)*S
+Colour-map lighting (docs/semantics.md §9): index = amb + (diff-amb)*D + (spec-diff)*S
 with D, S the summed diffuse and specular intensities, clamped to spec.
 """
 import math
@@ -240,7 +240,7 @@ def shade_rgb(geom, mats, lights, model, out, lmcolor=LMC_COLOR, sign=1.0):
 
 
 def shade_index(eye, normals, mats, lights, model, mid=None):
-    """Colour-map lighting (reference 9.5): an index per vertex, in column 0.
+    """Colour-map lighting (docs/semantics.md §9): an index per vertex, in column 0.
     mats: material property dicts; mid (N,) each vertex's index in mats, or
     None when there is one."""
     n = len(eye)

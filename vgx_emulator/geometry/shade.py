@@ -1,4 +1,4 @@
-"""The RGB lighting equation (reference 9.5, see lighting.py) as one numba
+"""The RGB lighting equation (docs/semantics.md §9, see lighting.py) as one numba
 loop over a batch's lit vertices.
 
 The numpy form of the same equation cost a dozen whole-array temporaries

@@ -1,4 +1,4 @@
-"""Matrix stacks and the matrices the IRIS GL calls build (reference sections 1.2-2).
+"""Matrix stacks and the matrices the IRIS GL calls build (docs/semantics.md §1, §2).
 
 Row-vector convention: a point ``p = [x y z w]`` is transformed as ``p . M``;
 the translation lives in row 3, the perspective-divide column is column 3.
@@ -101,7 +101,7 @@ def _cross(a, b):
 
 
 def lookat(vx, vy, vz, px, py, pz, twist_tenths):
-    """lookat(3G) as ``T(-v) . R . Rz(-twist)`` (reference section 2, Decision 8).
+    """lookat(3G) as ``T(-v) . R . Rz(-twist)`` (docs/semantics.md §2).
 
     A line of sight parallel to Y takes -Z as the up reference.
     """
@@ -143,7 +143,7 @@ class MatrixState:
         self.reset()
 
     def reset(self):
-        """Every stack emptied, every matrix identity (mmode(3G), Decision 7)."""
+        """Every stack emptied, every matrix identity (mmode(3G), docs/semantics.md §2)."""
         self.single = [IDENTITY.copy()]
         self.modelview = [IDENTITY.copy()]
         self.projection = IDENTITY.copy()

@@ -1,6 +1,6 @@
 """Perspective divide and the viewport / depth-range mapping.
 
-Reference section 2 (viewport), Decisions 4 and 5:
+docs/semantics.md §2 (viewport), §5 (depth) and §1 (snapping):
 
 - ``xw = left - 0.5 + (x/w + 1) / 2 * (right - left + 1)``, same for y, so
   that pixel (i, j) has its centre at window coordinates (i, j).

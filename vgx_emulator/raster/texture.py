@@ -13,7 +13,7 @@ BLEND     Cin.rgb * (1 - I) + Cconst.rgb * I           Ain * Atex
 ========  =========================================  ==================
 
 With texels stored as (I, I, I, 255) / (I, I, I, A) / (R, G, B, 255) /
-(R, G, B, A) these reproduce the reference's table per component count
+(R, G, B, A) these reproduce the table of docs/semantics.md §16 per component count
 (DECAL is only defined for 3 and 4 components, BLEND for 1 and 2; the
 machine substitutes MODULATE elsewhere).
 """
