@@ -1701,30 +1701,30 @@ def doublebuffer() -> None:
 
 doublebuffer(3G): ask for a front and a back buffer; takes effect at gconfig."""
 
-def draw(x: Coord, y: Coord, z: Coord, *args: Any) -> None:
+def draw(x: Coord, y: Coord, z: Coord) -> None:
     """C: void draw(Coord x, Coord y, Coord z)
 
-draw(3G): line from the graphics position; it moves there."""
+draw(3G): a line from the graphics position, which moves there (x, y, z: Coords)."""
 
-def draw2(x: Coord, y: Coord, *args: Any) -> None:
+def draw2(x: Coord, y: Coord) -> None:
     """C: void draw2(Coord x, Coord y)
 
-draw2(3G): line from the graphics position; it moves there."""
+draw2(3G): a line from the graphics position, which moves there (x, y: Coords)."""
 
-def draw2i(x: Icoord, y: Icoord, *args: Any) -> None:
+def draw2i(x: Icoord, y: Icoord) -> None:
     """C: void draw2i(Icoord x, Icoord y)
 
-draw2i(3G): line from the graphics position; it moves there."""
+draw2i(3G): a line from the graphics position, which moves there (x, y: Icoords)."""
 
-def draw2s(x: Scoord, y: Scoord, *args: Any) -> None:
+def draw2s(x: Scoord, y: Scoord) -> None:
     """C: void draw2s(Scoord x, Scoord y)
 
-draw2s(3G): line from the graphics position; it moves there."""
+draw2s(3G): a line from the graphics position, which moves there (x, y: Scoords)."""
 
-def drawi(x: Icoord, y: Icoord, z: Icoord, *args: Any) -> None:
+def drawi(x: Icoord, y: Icoord, z: Icoord) -> None:
     """C: void drawi(Icoord x, Icoord y, Icoord z)
 
-drawi(3G): line from the graphics position; it moves there."""
+drawi(3G): a line from the graphics position, which moves there (x, y, z: Icoords)."""
 
 def drawmode(mode: int) -> None:
     """C: void drawmode(long mode)
@@ -1733,10 +1733,10 @@ drawmode(3G): NORMALDRAW, PUPDRAW, OVERDRAW, UNDERDRAW or CURSORDRAW;
 each keeps its own current index, writemask and colour map.  Drawing in
 CURSORDRAW, or into a framebuffer without planes, changes nothing."""
 
-def draws(x: Scoord, y: Scoord, z: Scoord, *args: Any) -> None:
+def draws(x: Scoord, y: Scoord, z: Scoord) -> None:
     """C: void draws(Scoord x, Scoord y, Scoord z)
 
-draws(3G): line from the graphics position; it moves there."""
+draws(3G): a line from the graphics position, which moves there (x, y, z: Scoords)."""
 
 def editobj(obj: Object) -> None:
     """C: void editobj(Object obj)
@@ -2545,35 +2545,35 @@ VGX has no stereo buffers (getgdesc(GD_STEREO) is 0), so mono is the
 only configuration and the request changes nothing; stereobuffer(3G)
 raises GLError."""
 
-def move(x: Coord, y: Coord, z: Coord, *args: Any) -> None:
+def move(x: Coord, y: Coord, z: Coord) -> None:
     """C: void move(Coord x, Coord y, Coord z)
 
-move(3G): set the graphics position."""
+move(3G): set the current graphics position (x, y, z: Coords)."""
 
-def move2(x: Coord, y: Coord, *args: Any) -> None:
+def move2(x: Coord, y: Coord) -> None:
     """C: void move2(Coord x, Coord y)
 
-move2(3G): set the graphics position."""
+move2(3G): set the current graphics position (x, y: Coords)."""
 
-def move2i(x: Icoord, y: Icoord, *args: Any) -> None:
+def move2i(x: Icoord, y: Icoord) -> None:
     """C: void move2i(Icoord x, Icoord y)
 
-move2i(3G): set the graphics position."""
+move2i(3G): set the current graphics position (x, y: Icoords)."""
 
-def move2s(x: Scoord, y: Scoord, *args: Any) -> None:
+def move2s(x: Scoord, y: Scoord) -> None:
     """C: void move2s(Scoord x, Scoord y)
 
-move2s(3G): set the graphics position."""
+move2s(3G): set the current graphics position (x, y: Scoords)."""
 
-def movei(x: Icoord, y: Icoord, z: Icoord, *args: Any) -> None:
+def movei(x: Icoord, y: Icoord, z: Icoord) -> None:
     """C: void movei(Icoord x, Icoord y, Icoord z)
 
-movei(3G): set the graphics position."""
+movei(3G): set the current graphics position (x, y, z: Icoords)."""
 
-def moves(x: Scoord, y: Scoord, z: Scoord, *args: Any) -> None:
+def moves(x: Scoord, y: Scoord, z: Scoord) -> None:
     """C: void moves(Scoord x, Scoord y, Scoord z)
 
-moves(3G): set the graphics position."""
+moves(3G): set the current graphics position (x, y, z: Scoords)."""
 
 def msalpha(mode: int) -> None:
     """C: void msalpha(long mode)
@@ -2857,35 +2857,35 @@ def pmvs(x: Scoord, y: Scoord, z: Scoord, *args: Any) -> None:
 
 pmvs(3G): start a filled polygon at (x, y[, z]); pdr adds points, pclos closes it."""
 
-def pnt(x: Coord, y: Coord, z: Coord, *args: Any) -> None:
+def pnt(x: Coord, y: Coord, z: Coord) -> None:
     """C: void pnt(Coord x, Coord y, Coord z)
 
-pnt(3G): one point."""
+pnt(3G): one point (x, y, z: Coords)."""
 
-def pnt2(x: Coord, y: Coord, *args: Any) -> None:
+def pnt2(x: Coord, y: Coord) -> None:
     """C: void pnt2(Coord x, Coord y)
 
-pnt2(3G): one point."""
+pnt2(3G): one point (x, y: Coords)."""
 
-def pnt2i(x: Icoord, y: Icoord, *args: Any) -> None:
+def pnt2i(x: Icoord, y: Icoord) -> None:
     """C: void pnt2i(Icoord x, Icoord y)
 
-pnt2i(3G): one point."""
+pnt2i(3G): one point (x, y: Icoords)."""
 
-def pnt2s(x: Scoord, y: Scoord, *args: Any) -> None:
+def pnt2s(x: Scoord, y: Scoord) -> None:
     """C: void pnt2s(Scoord x, Scoord y)
 
-pnt2s(3G): one point."""
+pnt2s(3G): one point (x, y: Scoords)."""
 
-def pnti(x: Icoord, y: Icoord, z: Icoord, *args: Any) -> None:
+def pnti(x: Icoord, y: Icoord, z: Icoord) -> None:
     """C: void pnti(Icoord x, Icoord y, Icoord z)
 
-pnti(3G): one point."""
+pnti(3G): one point (x, y, z: Icoords)."""
 
-def pnts(x: Scoord, y: Scoord, z: Scoord, *args: Any) -> None:
+def pnts(x: Scoord, y: Scoord, z: Scoord) -> None:
     """C: void pnts(Scoord x, Scoord y, Scoord z)
 
-pnts(3G): one point."""
+pnts(3G): one point (x, y, z: Scoords)."""
 
 def pntsize(n: int) -> None:
     """C: void pntsize(short n)

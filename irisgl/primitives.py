@@ -614,7 +614,7 @@ for _f in (False, True):
             globals()[_c.__name__] = _c
 
 
-def _point_calls(prefix, dim, suffix):
+def _point_checker(prefix, dim, suffix):
     name = f"{prefix}{'2' if dim == 2 else ''}{suffix}"
     conv = num if suffix == "" else integer
 
@@ -625,24 +625,164 @@ def _point_calls(prefix, dim, suffix):
         c = tuple(conv(name, a) for a in args)
         p = (float(c[0]), float(c[1]), float(c[2]) if dim == 3 else 0.0, 1.0)
         if prefix == "pnt":
-            machine.polyline_vertices(w, POINT, (p,), name)
+            machine.point(w, p, name)
         elif prefix == "move":
             machine.move(w, p)
         else:
             machine.draw(w, p, name)
-    call.__name__ = name
-    call.__doc__ = {"pnt": f"{name}(3G): one point.",
-                    "move": f"{name}(3G): set the graphics position.",
-                    "draw": f"{name}(3G): line from the graphics position; it moves there."
-                    }[prefix]
-    return _export(glcall(call))
+    call.__name__ = call.__qualname__ = name
+    return glcall(call)
 
 
 for _p in ("pnt", "move", "draw"):
     for _d in (2, 3):
         for _s in ("", "i", "s"):
-            _c = _point_calls(_p, _d, _s)
-            globals()[_c.__name__] = _c
+            _c = _point_checker(_p, _d, _s)
+            _CHECKED[_c.__name__] = _c
+
+
+def _position(name, args, dim, ints):
+    """The (x, y, z, 1) of pnt/move/draw arguments, or None when the call
+    must take its checked path (wrong count; a float for an integer call,
+    which C truncates)."""
+    if len(args) != dim:
+        return None
+    if ints:
+        for a in args:
+            if a.__class__ is not int:
+                return None
+    if len(args) == 3:
+        return (float(args[0]), float(args[1]), float(args[2]), 1.0)
+    return (float(args[0]), float(args[1]), 0.0, 1.0)
+
+
+def _point_call(name, args, ints, op):
+    """The fast path of pnt*/move*/draw*: VGX.point (a run of pnt calls is
+    one point primitive), VGX.move, VGX.draw; the checked path otherwise."""
+    args = tuple(a for a in args if a is not _NO)
+    try:
+        p = _position(name, args, 3 if "2" not in name else 2, ints)
+        if p is not None:
+            w = machine.W
+            if w is not None:
+                return op(w, p, name)
+    except GLError as e:
+        return raise_or_report(e)
+    except Exception:
+        pass
+    return _CHECKED[name](*args)
+
+
+def _move(w, p, name):
+    machine.move(w, p)
+
+
+@_export
+def pnt2(x=_NO, y=_NO, *more):
+    """pnt2(3G): one point (x, y: Coords)."""
+    return _point_call("pnt2", (x, y) + more, False, machine.point)
+
+
+@_export
+def pnt2i(x=_NO, y=_NO, *more):
+    """pnt2i(3G): one point (x, y: Icoords)."""
+    return _point_call("pnt2i", (x, y) + more, True, machine.point)
+
+
+@_export
+def pnt2s(x=_NO, y=_NO, *more):
+    """pnt2s(3G): one point (x, y: Scoords)."""
+    return _point_call("pnt2s", (x, y) + more, True, machine.point)
+
+
+@_export
+def pnt(x=_NO, y=_NO, z=_NO, *more):
+    """pnt(3G): one point (x, y, z: Coords)."""
+    return _point_call("pnt", (x, y, z) + more, False, machine.point)
+
+
+@_export
+def pnti(x=_NO, y=_NO, z=_NO, *more):
+    """pnti(3G): one point (x, y, z: Icoords)."""
+    return _point_call("pnti", (x, y, z) + more, True, machine.point)
+
+
+@_export
+def pnts(x=_NO, y=_NO, z=_NO, *more):
+    """pnts(3G): one point (x, y, z: Scoords)."""
+    return _point_call("pnts", (x, y, z) + more, True, machine.point)
+
+
+@_export
+def move2(x=_NO, y=_NO, *more):
+    """move2(3G): set the current graphics position (x, y: Coords)."""
+    return _point_call("move2", (x, y) + more, False, _move)
+
+
+@_export
+def move2i(x=_NO, y=_NO, *more):
+    """move2i(3G): set the current graphics position (x, y: Icoords)."""
+    return _point_call("move2i", (x, y) + more, True, _move)
+
+
+@_export
+def move2s(x=_NO, y=_NO, *more):
+    """move2s(3G): set the current graphics position (x, y: Scoords)."""
+    return _point_call("move2s", (x, y) + more, True, _move)
+
+
+@_export
+def move(x=_NO, y=_NO, z=_NO, *more):
+    """move(3G): set the current graphics position (x, y, z: Coords)."""
+    return _point_call("move", (x, y, z) + more, False, _move)
+
+
+@_export
+def movei(x=_NO, y=_NO, z=_NO, *more):
+    """movei(3G): set the current graphics position (x, y, z: Icoords)."""
+    return _point_call("movei", (x, y, z) + more, True, _move)
+
+
+@_export
+def moves(x=_NO, y=_NO, z=_NO, *more):
+    """moves(3G): set the current graphics position (x, y, z: Scoords)."""
+    return _point_call("moves", (x, y, z) + more, True, _move)
+
+
+@_export
+def draw2(x=_NO, y=_NO, *more):
+    """draw2(3G): a line from the graphics position, which moves there (x, y: Coords)."""
+    return _point_call("draw2", (x, y) + more, False, machine.draw)
+
+
+@_export
+def draw2i(x=_NO, y=_NO, *more):
+    """draw2i(3G): a line from the graphics position, which moves there (x, y: Icoords)."""
+    return _point_call("draw2i", (x, y) + more, True, machine.draw)
+
+
+@_export
+def draw2s(x=_NO, y=_NO, *more):
+    """draw2s(3G): a line from the graphics position, which moves there (x, y: Scoords)."""
+    return _point_call("draw2s", (x, y) + more, True, machine.draw)
+
+
+@_export
+def draw(x=_NO, y=_NO, z=_NO, *more):
+    """draw(3G): a line from the graphics position, which moves there (x, y, z: Coords)."""
+    return _point_call("draw", (x, y, z) + more, False, machine.draw)
+
+
+@_export
+def drawi(x=_NO, y=_NO, z=_NO, *more):
+    """drawi(3G): a line from the graphics position, which moves there (x, y, z: Icoords)."""
+    return _point_call("drawi", (x, y, z) + more, True, machine.draw)
+
+
+@_export
+def draws(x=_NO, y=_NO, z=_NO, *more):
+    """draws(3G): a line from the graphics position, which moves there (x, y, z: Scoords)."""
+    return _point_call("draws", (x, y, z) + more, True, machine.draw)
 
 
 @_export

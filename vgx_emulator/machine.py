@@ -20,7 +20,7 @@ from .framebuffer import ZMAX, ZMIN, Framebuffer
 from .framebuffer import layers
 from .geometry import lighting, scrbox, stack
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
-from .geometry.batch import CLASS_OF, EV_COLOUR, EV_NORMAL, EV_TEX, FILLED, VertexBatch
+from .geometry.batch import CLASS_OF, EV_COLOUR, EV_NORMAL, EV_TEX, FILLED, POINTS, VertexBatch
 from .raster import fragment, variants
 from .raster import depth as _depth
 from .raster import stencil as _stencil
@@ -570,6 +570,29 @@ class VGX:
         b.add_block(np.array([[kind, v0, len(pts), 0]], np.int64), call)
         b.xf_dirty = True             # the next vertices use the matrices in force again
         b.dirty = True
+
+    def point(self, win, p, call):
+        """pnt(3G): one point.  Consecutive pnt calls extend one point
+        primitive (the same points, one primitive record)."""
+        b = win.batch
+        if b.open is not None:
+            fail(call, f"not allowed inside {b.open[1]}", f"call end{b.open[1][3:]} first")
+        if b.klass != POINTS:
+            if len(b):
+                self._flush(win)
+            b.klass = POINTS
+        if b.dirty:
+            b.record_attributes(win.st)
+        n = b.vbase + (len(b.pos) >> 2)
+        pr = b.prims
+        if pr and pr[-4] == POINT and pr[-3] + pr[-2] == n:
+            pr[-2] += 1
+        else:
+            pr += (POINT, n, 1, False)
+            b.calls.add(call)
+        b.pos += p
+        if self.display_hook is not None:
+            self.display_hook(win)
 
     def move(self, win, p):
         win.st.gpos = p
