@@ -25,6 +25,9 @@ from .store import Store
 
 FLOOR = "floor"
 REFERENCE = "reference_task"
+#: the record of an image drawn and saved whose scene's reference failed
+UNMEASURED = {"error": "not measured: the scene's reference failed (the image is saved; "
+                       "--resume measures it)", "traceback": "", "unmeasured": True}
 
 ROOT = Path(__file__).resolve().parent.parent
 COMMAND = "python -m study"
@@ -136,7 +139,7 @@ def error_phase(pool, store, specs, size, cfgs, threads, max_tile, stream, on_re
 
     for name, spec in specs.items():
         saved = store.reference(name)
-        if saved is not None:
+        if saved is not None and (not soft or "soft_fraction" in saved[0]):
             refs[name] = tasks.reference_from(saved[0])
             bar.step(f"{name}: reference (saved)")
             submit_floor(name)
@@ -147,17 +150,22 @@ def error_phase(pool, store, specs, size, cfgs, threads, max_tile, stream, on_re
             if store.done(name, cfg.key):
                 bar.step(f"{name}: {cfg.label} (done before)")
                 continue
-            shot = store.shot(name, cfg.key)
-            if shot is not None and store.record(name, cfg.key) is None:
+            shot, rec = store.shot(name, cfg.key), store.record(name, cfg.key)
+            if shot is not None and (rec is None or rec.get("unmeasured")):
                 waiting[name].append((cfg, shot))      # rendered, not measured: no rerun
                 continue
             pool.submit((name, cfg.key, cfg), tasks.render_task, spec, size, cfg.family,
                         dict(cfg.params), cfg.seed, err_threads, max_tile)
+        if name in refs:
+            for c, (image, lit, meta) in waiting.pop(name, []):
+                finish(name, c.key, c, image, lit, meta)
+                bar.step(f"{name}: {_label(c)}")
     for (name, key, cfg), ok, value in pool:
         if ok and key == REFERENCE:
             refs[name] = tasks.reference_from(value["arrays"])
             store.save_reference(name, value["arrays"],
                                  reference_summary(refs[name], value["seconds"]))
+            store.forget(name, REFERENCE)
             bar.step(f"{name}: reference")
             submit_floor(name)
             for c, (image, lit, meta) in waiting.pop(name, []):
@@ -171,9 +179,11 @@ def error_phase(pool, store, specs, size, cfgs, threads, max_tile, stream, on_re
             if name not in refs:
                 waiting[name].append((cfg, (value["image"], value["lit"], meta)))
                 continue
-            finish(name, key, cfg, value["image"], value["lit"], meta)
-            bar.step(f"{name}: {_label(cfg)}")
-            continue
+            if refs[name] is not None:
+                finish(name, key, cfg, value["image"], value["lit"], meta)
+                bar.step(f"{name}: {_label(cfg)}")
+                continue
+            value = dict(UNMEASURED, **meta)
         fail = value if ok else {"error": f"{type(value).__name__}: {value}",
                                  "traceback": "".join(traceback.format_exception(value))}
         rec = {"status": "error", "scene": name, "key": key,
@@ -181,10 +191,14 @@ def error_phase(pool, store, specs, size, cfgs, threads, max_tile, stream, on_re
                "family": "floor" if cfg is None else cfg.family,
                "params": {} if cfg is None else dict(cfg.params),
                "seed": None if cfg is None else cfg.seed, **fail}
+        store.save_record(name, key, rec)
         if key == REFERENCE:
             refs[name] = None
-            waiting.pop(name, None)
-        store.save_record(name, key, rec)
+            for c, _ in waiting.pop(name, []):
+                store.save_record(name, c.key, dict(rec, key=c.key, label=_label(c),
+                                                    family=c.family, params=dict(c.params),
+                                                    seed=c.seed, **UNMEASURED))
+                bar.step(f"{name}: {_label(c)} not measured")
         print(f"\nstudy: {name}: {rec['label']} failed: {rec['error']}", file=sys.stderr)
         if on_record:
             on_record(name, key, rec)
@@ -258,6 +272,9 @@ def assemble(store, specs, refs, cfgs, meta, size, quick, full, repeats, budget)
     for name in specs:
         sc = scenes.build(specs[name])
         rows, failed = [], []
+        broken = store.record(name, REFERENCE)
+        if broken is not None:
+            failed.append(_failed(broken))
         floor = store.record(name, FLOOR)
         if floor is not None and floor["status"] == "ok":
             rows.append(dict(_row(floor, [floor]), time_ms=float("nan"), times_ms=[],

@@ -123,6 +123,10 @@ class Store:
                             meta=np.array(json.dumps(meta or {}, default=_json_default)))
         os.replace(tmp, d / f"{key}.npz")
 
+    def forget(self, scene, key):
+        """Remove a configuration's record (a failure that is now mended)."""
+        (self.root / scene / f"{key}.json").unlink(missing_ok=True)
+
     def save_record(self, scene, key, record):
         write_json(self.dir(scene) / f"{key}.json", dict(record, run=self.run_id))
 

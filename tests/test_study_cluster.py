@@ -50,9 +50,9 @@ def test_the_parallel_sweep_equals_the_serial_one(serial, client, tmp_path):
     res = _run(root, out, client)
     same_results(out, whole)
     recs = records(out)
-    ran_on = {r["where"]["worker"] for r in recs.values() if r["status"] == "ok" and
-              r.get("where")}
-    assert ran_on and "serial" not in ran_on
+    good = [r for r in recs.values() if r["status"] == "ok"]
+    # every record keeps where it was drawn, also those that came before the reference
+    assert all(r["where"]["worker"] != "serial" and r["fb_bytes"] > 0 for r in good)
     assert recs[FAILING.key]["status"] == "error"
     assert "Dask" in res["meta"]["engine"]
     timed = res["timing"]["machines"][res["timing"]["compared on"]]
@@ -103,3 +103,16 @@ def test_vgx_study_workers(tmp_path):
     same_results(tmp_path / "two", tmp_path / "one")
     recs = records(tmp_path / "two")
     assert {r["where"]["worker"] for r in recs.values()} <= {"0", "1"}
+
+
+def test_vgx_study_scheduler(client, tmp_path):
+    """``--scheduler ADDRESS`` sends the tasks to a running cluster (here
+    the module's) and leaves it running."""
+    scene = tiny_file(tmp_path)
+    args = ["--scenes", scene, "--size", "32x24", "--methods", "volumes", "--quick",
+            "--no-timing"]
+    cli.main(args + ["--out", str(tmp_path / "one")])
+    cli.main(args + ["--out", str(tmp_path / "far"), "--scheduler", client.scheduler.address])
+    same_results(tmp_path / "far", tmp_path / "one")
+    assert all(r["where"]["worker"] != "serial" for r in records(tmp_path / "far").values())
+    assert len(client.scheduler_info()["workers"]) == 2

@@ -317,6 +317,55 @@ def test_resume_finishes_only_what_was_missing(serial, tmp_path):
     same_results(out, whole)
 
 
+def test_resume_measures_a_saved_image_without_drawing_it_again(serial, tmp_path):
+    """An image saved without its record (the run stopped before the
+    reference was there) is measured on resume, not drawn again."""
+    import shutil
+    _, whole, root = serial
+    out = tmp_path / "copy"
+    shutil.copytree(whole, out)
+    (out / "T" / "volumes_z-pass.json").unlink()
+    ran = []
+    report.run((tiny_file(root),), SIZE, out_dir=out, repeats=1, budget=1.0,
+               cfgs=tiny_configs(), stream=None, resume=True, timing=False,
+               on_record=lambda s, k, r: ran.append(k))
+    assert ran == ["volumes_z-pass", FAILING.key]
+    old = records(whole)["volumes_z-pass"]
+    new = records(out)["volumes_z-pass"]
+    assert new["run"] != old["run"]
+    assert {k: new[k] for k in ("render_s", "where", "fb_bytes", "rmse", "misclassified")} == \
+        {k: old[k] for k in ("render_s", "where", "fb_bytes", "rmse", "misclassified")}
+
+
+def test_a_failed_reference_is_recorded_and_resume_measures_the_images(serial, tmp_path,
+                                                                       monkeypatch):
+    """The scene's reference raises: its error is recorded, every image is
+    still drawn and saved, each configuration recorded as not measured;
+    --resume casts the reference and measures them without drawing again."""
+    _, whole, root = serial
+
+    def broken(*args):
+        raise RuntimeError("no reference today")
+    monkeypatch.setattr(tasks, "reference_task", broken)
+    out = tmp_path / "out"
+    res = report.run((tiny_file(root),), SIZE, out_dir=out, repeats=1, budget=1.0,
+                     cfgs=tiny_configs(), stream=None, timing=False)
+    ref = read_json(out / "T" / "reference_task.json")
+    assert ref["status"] == "error" and "RuntimeError: no reference today" in ref["error"]
+    recs = records(out)
+    drawn = [k for k, r in recs.items() if r.get("unmeasured")]
+    assert sorted(drawn) == sorted(c.key for c in tiny_configs() if c is not FAILING)
+    assert all((out / "T" / f"{k}.npz").exists() for k in drawn)
+    assert res["scenes"]["T"]["rows"] == [] and res["scenes"]["T"]["pictures"] is None
+    assert res["scenes"]["T"]["failed"][0]["label"] == "reference"
+    monkeypatch.undo()
+    report.run((tiny_file(root),), SIZE, out_dir=out, repeats=1, budget=1.0,
+               cfgs=tiny_configs(), stream=None, resume=True, timing=False)
+    again = records(out)
+    assert all(again[k]["render_s"] == recs[k]["render_s"] for k in drawn)
+    same_results(out, whole)
+
+
 def test_resume_into_another_sweep_is_refused(serial, tmp_path):
     _, out, root = serial
     with pytest.raises(ValueError, match="other settings .*size"):
