@@ -373,16 +373,21 @@ def test_resume_into_another_sweep_is_refused(serial, tmp_path):
                    cfgs=tiny_configs()[:1], stream=None, resume=True)
 
 
-def test_resume_of_a_finished_sweep_runs_nothing(serial, tmp_path):
+def test_resume_of_a_finished_sweep_runs_only_the_missing_timing(serial, tmp_path):
     import shutil
     _, whole, root = serial
     out = tmp_path / "copy"
     shutil.copytree(whole, out)
+    (out / "T" / "volumes_z-fail.time.json").unlink()       # as if stopped while timing
+    times = {p.name: read_json(p)["run"] for p in (whole / "T").glob("*.time.json")}
     ran = []
     res = report.run((tiny_file(root),), SIZE, out_dir=out, repeats=1, budget=1.0,
                      cfgs=tiny_configs(), stream=None, resume=True,
                      on_record=lambda s, k, r: ran.append(k))
     assert ran == [FAILING.key]                      # a failure is tried again
+    now = {p.name: read_json(p)["run"] for p in (out / "T").glob("*.time.json")}
+    assert now.keys() == times.keys()
+    assert [k for k in now if now[k] != times[k]] == ["volumes_z-fail.time.json"]
     # the floor, 7 hard configurations, 2 soft ones (of two seeds each); the failure apart
     assert len(res["scenes"]["T"]["rows"]) == 10
     same_results(out, whole)
