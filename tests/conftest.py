@@ -1,7 +1,9 @@
-"""Shared fixtures: a fresh machine for every test, and a small window opener."""
+"""Shared fixtures: a fresh machine for every test, and a small window opener
+(tests/banks.py has the window and the bank readers)."""
 import pytest
 
 import vgx_emulator
+from banks import new_window
 
 
 @pytest.fixture(autouse=True)
@@ -15,23 +17,8 @@ def vgx():
     vgx_emulator.errors.set_error_mode("strict")
 
 
-def _open_window(w=64, h=48, rgb=True, double=False, name="test"):
-    """prefsize + winopen + RGBmode/cmode (+ doublebuffer) + gconfig; returns the id.
-    The matrices are left as winopen leaves them."""
-    from irisgl import RGBmode, cmode, doublebuffer, gconfig, prefsize, winopen
-    prefsize(w, h)
-    gid = winopen(name)
-    if rgb:
-        RGBmode()
-    else:
-        cmode()
-    if double:
-        doublebuffer()
-    gconfig()
-    return gid
-
-
 @pytest.fixture
 def open_window():
-    """``open_window(w=64, h=48, rgb=True, double=False)`` -> window id."""
-    return _open_window
+    """``open_window(w=64, h=48, rgb=True, double=False, planes=0, accum=0,
+    origin=None, pixels=False, cleared=False)`` -> window id (banks.new_window)."""
+    return new_window

@@ -8,6 +8,8 @@ rule: round to nearest (floor(v + 0.5)).
 """
 import math
 
+from functools import partial
+
 import numpy as np
 import pytest
 
@@ -15,32 +17,11 @@ import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
-try:
-    from banks import colour
-except ImportError:
-    from tests.banks import colour
+from banks import new_window, colour
 
 
-@pytest.fixture(autouse=True)
-def _fresh_machine():
-    from irisgl._current import machine
-    machine.reset()
-    vgx_emulator.set_error_mode('strict')
-    yield
-    machine.reset()
+open_win = partial(new_window, accum=16, pixels=True)   # pixel (i, j)'s centre at (i, j)
 
-
-def open_win(w=4, h=4, rgb=True, accum=16, double=False, planes=0):
-    prefsize(w, h)
-    gid = winopen("accum-test")
-    RGBmode() if rgb else cmode()
-    if double:
-        doublebuffer()
-    acsize(accum)
-    stensize(planes)
-    gconfig()
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    return gid
 
 
 def acc_bank():

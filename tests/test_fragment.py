@@ -3,35 +3,19 @@
 Expectations are computed here from the man-page formulas.
 """
 
+from functools import partial
+
 import pytest
 
 import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
-try:
-    from banks import box, colour, indices, z_bank, stencil_bank
-except ImportError:
-    from tests.banks import box, colour, indices, z_bank, stencil_bank
+from banks import new_window, box, colour, indices, z_bank, stencil_bank
 
 
-@pytest.fixture(autouse=True)
-def _fresh_machine():
-    from irisgl._current import machine
-    machine.reset()
-    vgx_emulator.set_error_mode('strict')
-    yield
-    machine.reset()
+open_win = partial(new_window, pixels=True)      # pixel (i, j)'s centre at (i, j)
 
-
-def open_win(w=4, h=4, rgb=True, planes=0):
-    prefsize(w, h)
-    gid = winopen("fragment-test")
-    RGBmode() if rgb else cmode()
-    stensize(planes)
-    gconfig()
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    return gid
 
 
 def comps(word):

@@ -1,6 +1,8 @@
 """defpattern(3G), setpattern(3G), getpattern(3G) (docs/semantics.md §8):
 bit layout, screen-aligned tiling, what a 0 bit protects and
 which primitives the pattern applies to."""
+from functools import partial
+
 import numpy as np
 import pytest
 
@@ -8,32 +10,11 @@ import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
-try:
-    from banks import box, colour, z_bank, stencil_bank
-except ImportError:
-    from tests.banks import box, colour, z_bank, stencil_bank
+from banks import new_window, box, colour, z_bank, stencil_bank
 
 
-@pytest.fixture(autouse=True)
-def _fresh_machine():
-    from irisgl._current import machine
-    machine.reset()
-    vgx_emulator.set_error_mode('strict')
-    yield
-    machine.reset()
+open_win = partial(new_window, pixels=True)      # pixel (i, j)'s centre at (i, j)
 
-
-def open_win(w=16, h=16, rgb=True, planes=0, origin=None):
-    if origin is None:
-        prefsize(w, h)
-    else:
-        prefposition(origin[0], origin[0] + w - 1, origin[1], origin[1] + h - 1)
-    gid = winopen("pattern-test")
-    RGBmode() if rgb else cmode()
-    stensize(planes)
-    gconfig()
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    return gid
 
 
 def pattern_mask(words, size, w, h, ox=0, oy=0):

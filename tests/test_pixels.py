@@ -1,5 +1,7 @@
 """readsource, lrectread, rectread, lrectwrite, rectwrite, rectzoom, rectcopy
 (docs/semantics.md §11, §5; docs/porting.md §3)."""
+from functools import partial
+
 import numpy as np
 import pytest
 
@@ -7,31 +9,11 @@ import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
-try:
-    from banks import box, colour
-except ImportError:
-    from tests.banks import box, colour
+from banks import new_window, box, colour
 
 
-@pytest.fixture(autouse=True)
-def _fresh_machine():
-    from irisgl._current import machine
-    machine.reset()
-    vgx_emulator.set_error_mode('strict')
-    yield
-    machine.reset()
+open_win = partial(new_window, pixels=True)      # pixel (i, j)'s centre at (i, j)
 
-
-def open_win(w=8, h=8, rgb=True, planes=0, double=False):
-    prefsize(w, h)
-    gid = winopen("pixels-test")
-    RGBmode() if rgb else cmode()
-    if double:
-        doublebuffer()
-    stensize(planes)
-    gconfig()
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    return gid
 
 
 def distinct_words(h, w, seed=3):

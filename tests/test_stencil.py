@@ -3,6 +3,8 @@
 Expectations come from a small independent model of the man-page rules
 (``st_test``/``st_op`` below), never from the library's kernels.
 """
+from functools import partial
+
 import numpy as np
 import pytest
 
@@ -10,34 +12,12 @@ import vgx_emulator
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
 
-try:
-    from banks import box, stencil_bank, z_bank, colour
-except ImportError:
-    from tests.banks import box, stencil_bank, z_bank, colour
+from banks import new_window, box, stencil_bank, z_bank, colour
 
 
 # -- fixtures and helpers -------------------------------------------------------
-@pytest.fixture(autouse=True)
-def _fresh_machine():
-    from irisgl._current import machine
-    machine.reset()
-    vgx_emulator.set_error_mode('strict')
-    yield
-    machine.reset()
+open_win = partial(new_window, planes=8, pixels=True)   # pixel (i, j)'s centre at (i, j)
 
-
-def open_win(w=8, h=8, planes=8, rgb=True, origin=None):
-    """A small window; ortho2 puts pixel (i, j)'s centre at (i, j)."""
-    if origin is None:
-        prefsize(w, h)
-    else:
-        prefposition(origin[0], origin[0] + w - 1, origin[1], origin[1] + h - 1)
-    gid = winopen("stencil-test")
-    RGBmode() if rgb else cmode()
-    stensize(planes)
-    gconfig()
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    return gid
 
 
 def set_columns(values, h=None):
