@@ -86,11 +86,11 @@ def run(scene_names=("A", "B"), size=(320, 240), quick=False, out_dir=None, md_p
     settings = {"size": list(size), "scene_names": list(specs),
                 "scenes": {n: _digest(s) for n, s in specs.items()}, "max_tile": int(max_tile),
                 "repeats": int(repeats), "budget_s": float(budget), "threads": int(threads)}
-    store = Store(out_dir, settings, resume)
     pool = make_pool(workers, scheduler, client)
     t0 = time.perf_counter()
     meta = machine_info(threads)
     try:
+        store = Store(out_dir, settings, resume)
         log = stream if stream is not None else sys.stderr
         print(f"study: {len(cfgs)} configurations x {len(specs)} scenes on {pool.description}, "
               f"into {out_dir}", file=log)
