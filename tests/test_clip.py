@@ -5,6 +5,7 @@ docs/semantics.md §2 (perspective, viewport mapping) and the fill rule model
 of ``tests/reference/raster.py``; nothing is copied from the emulator.
 """
 import math
+from functools import partial
 import warnings
 
 import numpy as np
@@ -17,30 +18,14 @@ from irisgl import (BF_ONE, BF_ZERO, FALSE, TRUE, bgnline, bgnpoint, bgnpolygon,
                     n3f, ortho2, perspective, popmatrix, prefsize, pushmatrix, RGBmode,
                     scale, subpixel, v2f, v3f, v4f, winopen)
 from vgx_emulator import VGXWarning
-try:                                   # tests/ on sys.path (pytest, no __init__.py)
-    from reference import raster as ref
-except ImportError:                    # tests imported as a package
-    from tests.reference import raster as ref
+from banks import new_window
+from reference import raster as ref
 
 W, H = 32, 32
 IDENTITY = [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]
 
 
-@pytest.fixture(autouse=True)
-def _fresh():
-    from irisgl._current import machine
-    machine.reset()
-    yield
-    machine.reset()
-
-
-def _window(w=W, h=H):
-    prefsize(w, h)
-    gid = winopen("clip")
-    RGBmode()
-    gconfig()
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    return gid
+_window = partial(new_window, W, H, pixels=True)   # pixel (i, j)'s centre at (i, j)
 
 
 def _read(w=W, h=H):
@@ -70,7 +55,7 @@ def _poly(vs, call=v3f):
 # perspective and the near plane
 
 def _persp_window(w=W, h=H, near=0.1, far=1000.0):
-    _window(w, h)
+    new_window(w, h, pixels=True)
     perspective(900, w / h, near, far)       # fovy 90 degrees: f = cot(45) = 1
 
 

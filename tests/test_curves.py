@@ -9,6 +9,7 @@ pixel centres on integer coordinates (docs/semantics.md §1: snapped lines are c
 """
 import math
 from fractions import Fraction
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -16,6 +17,7 @@ import pytest
 
 from irisgl import *
 from irisgl import GLError
+from banks import new_window
 from vgx_emulator import VGXWarning, run_program
 from vgx_emulator.geometry import curves as C
 from vgx_emulator.surfaces import patch_mesh
@@ -30,16 +32,6 @@ BSP = [[-1 / 6, 3 / 6, -3 / 6, 1 / 6], [3 / 6, -6 / 6, 3 / 6, 0],
        [-3 / 6, 0, 3 / 6, 0], [1 / 6, 4 / 6, 1 / 6, 0]]
 BASES = {"bezier": BEZ, "cardinal": CAR, "bspline": BSP}
 BEZIER_ID, CARDINAL_ID, BSPLINE_ID = 1, 2, 3
-
-
-@pytest.fixture(autouse=True)
-def fresh_machine():
-    """Power-on state around every test (curve state included: reset() sets
-    machine.curve_state to None, checked by test_reset_forgets_curve_state)."""
-    from irisgl._current import machine
-    machine.reset()
-    yield machine
-    machine.reset()
 
 
 # ----------------------------------------------------------------------------
@@ -68,15 +60,8 @@ def patch_point(Mu, Mv, Gs, u, v):
 W, H = 40, 28
 
 
-def _window(w=W, h=H):
-    prefsize(w, h)
-    winopen("curves")
-    RGBmode()
-    gconfig()
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    cpack(0x00000000)
-    clear()
-    cpack(0xFFFFFFFF)
+#: a W x H window, pixel centres on integers, cleared to 0, drawing in white
+_window = partial(new_window, W, H, pixels=True, cleared=True)
 
 
 def _lit(w=W, h=H):

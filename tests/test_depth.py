@@ -20,31 +20,18 @@ from irisgl import (FALSE, GD_ZMAX, GD_ZMIN, SRC_FRONT, SRC_ZBUFFER, TRUE, ZF_AL
                     endpolygon, gconfig, getgdesc, lgetdepth, lrectread, lsetdepth, ortho,
                     prefsize, readsource, scrmask, subpixel, v3f, viewport, winopen, wmpack,
                     zbuffer, zclear, zfunction, zwritemask)
-try:                                   # tests/ on sys.path (pytest, no __init__.py)
-    from reference import raster as ref
-except ImportError:                    # tests imported as a package
-    from tests.reference import raster as ref
+from banks import new_window
+from reference import raster as ref
 
 W, H = 32, 32
 ZMIN, ZMAX = -0x800000, 0x7FFFFF
 RED, GREEN, BLUE = 0xFF0000FF, 0xFF00FF00, 0xFFFF0000
 
 
-@pytest.fixture(autouse=True)
-def _fresh():
-    from irisgl._current import machine
-    machine.reset()
-    yield
-    machine.reset()
-
-
-def _window(w=W, h=H):
-    prefsize(w, h)
-    gid = winopen("depth")
-    RGBmode()
-    gconfig()
-    ortho(-0.5, w - 0.5, -0.5, h - 0.5, -1.0, 1.0)
-    return gid
+def _window():
+    """A W x H window whose ortho maps pixel centres to integers, z in -1..1."""
+    new_window(W, H)
+    ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
 
 
 def _quad(zn, colour, x0=-0.5, x1=W - 0.5, y0=-0.5, y1=H - 0.5):

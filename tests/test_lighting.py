@@ -16,6 +16,7 @@ import math
 import numpy as np
 import pytest
 
+from banks import new_window
 from irisgl import *  # noqa: F401,F403
 from irisgl import (ALPHA, AMBIENT, ATTENUATION, ATTENUATION2, BACKMATERIAL, DEFLIGHT,
                     DEFLMODEL, DEFMATERIAL, DIFFUSE, EMISSION, FLAT, GLError, LCOLOR,
@@ -32,19 +33,10 @@ CX, CY = 8, 8                      # the pixel read back
 CLEAR = 0xFF204060                 # a background no lit colour below equals
 
 
-@pytest.fixture(autouse=True)
-def _fresh():
-    from irisgl._current import machine
-    machine.reset()
-    yield
-    machine.reset()
-
-
 def _window(w=W, h=H):
-    prefsize(w, h)
-    gid = winopen("lighting")
-    RGBmode()
-    gconfig()
+    """A w x h RGB window in MVIEWING whose ortho maps pixel centres to
+    integers (eye space in pixels, z in -100..100), FLAT, cleared."""
+    gid = new_window(w, h)
     mmode(MVIEWING)
     ortho(-0.5, w - 0.5, -0.5, h - 0.5, -100.0, 100.0)
     shademodel(FLAT)

@@ -10,6 +10,7 @@ reference set, and the whole mesh drawn in one batch with additive blending
 exactly as often as the reference coverages do (0 or 1).
 """
 import random
+from functools import partial
 
 import numpy as np
 import pytest
@@ -24,30 +25,13 @@ from irisgl import (FALSE, FLAT, GOURAUD, TRUE, BF_ONE, BF_ZERO, backface, bgncl
                     lrectread, move2i, ortho2, pnt2, polf, polf2, polf2i, polf2s, prefsize,
                     rectf, rectfi, rectfs, RGBmode, shademodel, subpixel,
                     swaptmesh, v2f, winopen)
-try:                                   # tests/ on sys.path (pytest, no __init__.py)
-    from reference import raster as ref
-except ImportError:                    # tests imported as a package
-    from tests.reference import raster as ref
+from banks import new_window
+from reference import raster as ref
 
 W, H = 32, 32
 
 
-@pytest.fixture(autouse=True)
-def _fresh():
-    from irisgl._current import machine
-    machine.reset()
-    yield
-    machine.reset()
-
-
-def _window(w=W, h=H, projection=True):
-    prefsize(w, h)
-    gid = winopen("scan")
-    RGBmode()
-    gconfig()
-    if projection:
-        ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-    return gid
+_window = partial(new_window, W, H, pixels=True)   # pixel (i, j)'s centre at (i, j)
 
 
 def _read(w=W, h=H):
@@ -166,7 +150,7 @@ def test_reference_model_shared_edges_partition_a_square():
 # default projection
 
 def test_default_projection_maps_pixel_centres():
-    _window(projection=False)
+    new_window(W, H)                   # the matrices winopen leaves
     assert _alone([(2, 3), (10, 3), (10, 8), (2, 8)]) == ref.rect_pixels(2, 9, 3, 7)
 
 
@@ -190,7 +174,7 @@ def test_square_split_in_two_covers_exactly_w_times_h(subpix, x0, y0, w, h, diag
 def test_rectangle_ascii():
     """A 3x2 rectangle with corners on pixel centres: left and bottom edges in,
     right and top edges out."""
-    _window(8, 6)
+    new_window(8, 6, pixels=True)
     got = _alone([(2, 1), (5, 1), (5, 3), (2, 3)], 8, 6)
     assert got == _ascii([
         "........",
