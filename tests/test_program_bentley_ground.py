@@ -17,10 +17,7 @@ import pytest
 import programs.bentley_ground_shadows as B
 from vgx_emulator import run_program
 
-try:
-    from reference.camera import lookat_matrix, perspective_matrix
-except ImportError:
-    from tests.reference.camera import lookat_matrix, perspective_matrix
+from reference.camera import lookat_matrix, perspective_matrix
 
 PROGRAM = B.__file__
 W, H = B.WIDTH, B.HEIGHT

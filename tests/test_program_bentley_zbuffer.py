@@ -18,10 +18,7 @@ import programs.bentley_shadow_zbuffer as P
 from programs import bentley_ground_shadows as B
 from vgx_emulator import run_program
 
-try:
-    from reference.camera import lookat_matrix, perspective_matrix
-except ImportError:
-    from tests.reference.camera import lookat_matrix, perspective_matrix
+from reference.camera import lookat_matrix, perspective_matrix
 
 W, H = P.WIDTH, P.HEIGHT
 AMB_MODEL = np.array(P.AMBIENT_MODEL)

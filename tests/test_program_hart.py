@@ -17,10 +17,7 @@ import pytest
 import programs.hart_shadow_buffer as H
 from vgx_emulator import run_program
 
-try:
-    from reference.camera import lookat_matrix, perspective_matrix
-except ImportError:
-    from tests.reference.camera import lookat_matrix, perspective_matrix
+from reference.camera import lookat_matrix, perspective_matrix
 
 PROGRAM = H.__file__
 W, HT = H.WIDTH, H.HEIGHT

@@ -19,10 +19,7 @@ import pytest
 import programs.tessman_flat_shadows as T
 from vgx_emulator import run_program
 
-try:                                   # tests/ on sys.path (pytest, no __init__.py)
-    from reference.camera import lookat_matrix, perspective_matrix
-except ImportError:                    # tests imported as a package
-    from tests.reference.camera import lookat_matrix, perspective_matrix
+from reference.camera import lookat_matrix, perspective_matrix
 
 PROGRAM = T.__file__
 W, H = T.WIDTH, T.HEIGHT
