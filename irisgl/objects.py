@@ -274,6 +274,7 @@ def gentag():
 @glcall
 def istag(t):
     """istag(3G): TRUE when tag t is in the object open for editing."""
+    t = integer("istag", t, "tag")
     if machine.recording is None:
         return 0
     ob = machine.objects[machine.recording]

@@ -156,7 +156,7 @@ def getvideo(reg):
     there (getvideo(3G) returns -1 rather than failing)."""
     try:
         r = int(reg)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):      # OverflowError: int(inf)
         return -1
     return _video().get(r, -1)
 
@@ -461,9 +461,27 @@ def _count(call, n):
     return n
 
 
+def _out_array(call, a, what):
+    """An array C fills, ported as an optional argument: None (use the
+    returned arrays), a numpy array or a list; anything else is a misuse."""
+    if a is not None and not isinstance(a, (np.ndarray, list)):
+        fail(call, f"{what} {a!r} is not an array", "pass an array to fill, or none")
+
+
+def _fill(given, vals, n):
+    """Fill the first n elements of an array or list at least n long (C
+    fills the caller's buffer)."""
+    if isinstance(given, np.ndarray) and given.size >= n:
+        given.reshape(-1)[:n] = vals
+    elif isinstance(given, list) and len(given) >= n:
+        given[:n] = vals.tolist()
+
+
 def _row(call, a, n, what, mask):
     try:
         arr = np.asarray(a).reshape(-1)
+        if arr.dtype.kind not in "iubfO":
+            raise TypeError
         if arr.size < n:
             fail(call, f"{what} has {arr.size} elements", f"n = {n}")
         return _words(arr[:n], mask)
@@ -524,11 +542,12 @@ def readRGB(n, red=None, green=None, blue=None):
     n = _count("readRGB", n)
     if not w.st.rgb:
         fail("readRGB", "in colour-map mode", "RGBmode() then gconfig(); or readpixels")
+    for given, what in ((red, "red"), (green, "green"), (blue, "blue")):
+        _out_array("readRGB", given, what)
     count, words = _read_row("readRGB", w, n)
     out = [((words >> s) & 0xFF).astype(np.uint8) for s in (0, 8, 16)]
     for given, val in zip((red, green, blue), out):
-        if isinstance(given, np.ndarray) and given.size >= n:
-            given.reshape(-1)[:n] = val
+        _fill(given, val, n)
     return (count,) + tuple(out)
 
 
@@ -539,10 +558,10 @@ def readpixels(n, colors=None):
     viewport; the position moves past the last one."""
     w = win("readpixels")
     n = _count("readpixels", n)
+    _out_array("readpixels", colors, "colors")
     count, words = _read_row("readpixels", w, n)
     vals = (words.astype(np.int64) & 0xFFFF).astype(np.uint16)
-    if isinstance(colors, np.ndarray) and colors.size >= n:
-        colors.reshape(-1)[:n] = vals
+    _fill(colors, vals, n)
     return count, vals
 
 

@@ -601,7 +601,7 @@ def getwscrn():
 def _screen(gsnr, focus=False):
     try:
         g = int(gsnr)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):      # OverflowError: int(inf)
         return None
     if g == 0 or (focus and g == K.INFOCUSSCRN):
         return g

@@ -361,3 +361,43 @@ def test_a_line_cut_point_lost_to_cancellation_is_dropped_with_a_warning(open_wi
         endline()
         gflush()
     assert [str(x.message).split(" with ")[0] for x in w] == ["v*/n3f/c*/t*: 1 line segment(s)"]
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: dopup(float("inf")), "dopup"),
+    (lambda: addtopup(-float("inf"), "x"), "addtopup"),
+    (lambda: freepup(float("inf")), "freepup"),
+    (lambda: setpup(float("inf"), 1, 0), "setpup"),
+    (lambda: istag(object()), "istag"),
+    (lambda: readpixels(1, object()), "readpixels"),
+    (lambda: readRGB(1, None, 1j, None), "readRGB"),
+    (lambda: writeRGB(1, 1j, 1, 1), "writeRGB"),
+])
+def test_fuzzed_misuse_of_full_values_is_a_glerror(open_window, call, name):
+    """The full misuse run (infinities, objects, complex numbers): each
+    raised OverflowError or was accepted silently before."""
+    open_window(8, 8)
+    before = _snapshot()
+    with pytest.raises(GLError, match=f"^{name}: "):
+        call()
+    assert _snapshot() == before
+
+
+def test_invalid_screens_and_registers_answer_minus_one():
+    """getvideo(3G), scrnselect(3G), scrnattach(3G) answer -1 for an
+    invalid register or screen, infinity included (OverflowError before)."""
+    assert getvideo(float("inf")) == -1
+    assert scrnselect(-float("inf")) == -1
+    assert scrnattach(float("inf")) == -1
+
+
+def test_readpixels_fills_a_list(open_window):
+    """readpixels(3G) fills the caller's array; a list ported from C's
+    array is filled in place like a numpy array."""
+    open_window(8, 8, rgb=False)
+    color(5)
+    clear()
+    cmov2i(0, 0)
+    got = [0, 0, 0]
+    readpixels(2, got)
+    assert got == [5, 5, 0]

@@ -118,7 +118,7 @@ class MenuTable:
     def menu(self, call, pup):
         try:
             pid = int(pup)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):      # OverflowError: int(inf)
             fail(call, f"menu {pup!r} is not a menu id", "pass an id from defpup or newpup")
         m = self.menus.get(pid)
         if m is None:
