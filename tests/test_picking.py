@@ -18,11 +18,6 @@ from vgx_emulator.runner import run_program
 DEMO = Path(__file__).resolve().parents[1] / "programs" / "demos" / "picking.py"
 
 
-def _window(open_window, w=100, h=100):
-    open_window(w, h)
-    ortho2(-0.5, w - 0.5, -0.5, h - 0.5)
-
-
 def _cursor(x, y):
     qenter(MOUSEX, x)
     qenter(MOUSEY, y)
@@ -49,7 +44,7 @@ def _three_rects():
 
 # -- picking -------------------------------------------------------------------
 def test_pick_fills_the_buffer_in_place(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(25, 25)
     buf = np.full(20, -9, np.int16)
     pick(buf, 20)
@@ -64,7 +59,7 @@ def test_pick_fills_the_buffer_in_place(open_window):
 
 
 def test_pick_without_buffer_returns_count_and_new_array(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(75, 75)
     pick(16)
     ortho2(-0.5, 99.5, -0.5, 99.5)
@@ -77,7 +72,7 @@ def test_pick_without_buffer_returns_count_and_new_array(open_window):
 
 
 def test_nothing_is_drawn_while_picking(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     cpack(0x00FF00)
     _cursor(25, 25)
     pick(10)
@@ -96,7 +91,7 @@ def test_nothing_is_drawn_while_picking(open_window):
 
 def test_clear_is_a_hit(open_window):
     """pick(3G) (AIX GL): clear causes hits like the drawing routines."""
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(50, 50)
     pick(10)
     clear()
@@ -109,7 +104,7 @@ def test_clear_is_a_hit(open_window):
 def test_picksize_region(open_window, size, hit):
     """The region is size x size pixels centred on the cursor pixel: with the
     cursor at x = 25 a rectangle from x = 29.5 is reached by half widths > 4.5."""
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     if size is not None:
         picksize(size, size)
     _cursor(25, 50)
@@ -135,7 +130,7 @@ def test_cursor_is_in_screen_coordinates(open_window):
 
 
 def test_points_and_lines(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(50, 50)
     pick(20)
     ortho2(-0.5, 99.5, -0.5, 99.5)
@@ -162,7 +157,7 @@ def test_points_and_lines(open_window):
 
 
 def test_non_finite_vertices_are_dropped(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(25, 25)
     pick(10)
     ortho2(-0.5, 99.5, -0.5, 99.5)
@@ -182,7 +177,7 @@ def test_non_finite_vertices_are_dropped(open_window):
 
 
 def test_records_follow_the_touch_rule(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(25, 25)
     pick(40)
     ortho2(-0.5, 99.5, -0.5, 99.5)
@@ -202,7 +197,7 @@ def test_records_follow_the_touch_rule(open_window):
 
 
 def test_overflow_gives_negative_count(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(25, 25)
     buf = np.zeros(5, np.int16)
     pick(buf, 5)
@@ -247,7 +242,7 @@ def test_projection_is_restated_around_pick(open_window):
     """Programming Guide 12.1.1: pick changes no matrix (without a restated
     projection every visible object is picked); the restated projection
     is loaded times the picking matrix, and endpick leaves that product."""
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     plain = getmatrix()
     _cursor(75, 75)
     pick(10)
@@ -270,7 +265,7 @@ def test_projection_is_restated_around_pick(open_window):
 
 
 def test_objects_carry_the_names(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     makeobj(10)
     loadname(1)
     rectf(10, 10, 40, 40)
@@ -288,7 +283,7 @@ def test_objects_carry_the_names(open_window):
 
 # -- name stack outside the modes, errors -----------------------------------------
 def test_name_calls_are_ignored_outside_pick_and_select(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     popname()                               # no error: ignored
     pushname(4)
     loadname(5)
@@ -302,7 +297,7 @@ def test_name_calls_are_ignored_outside_pick_and_select(open_window):
 
 
 def test_name_stack_misuse(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(25, 25)
     pick(10)
     with pytest.raises(GLError, match="^popname: the name stack is empty"):
@@ -319,7 +314,7 @@ def test_name_stack_misuse(open_window):
 
 
 def test_loadname_wraps_to_a_short(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(25, 25)
     pick(10)
     ortho2(-0.5, 99.5, -0.5, 99.5)
@@ -330,7 +325,7 @@ def test_loadname_wraps_to_a_short(open_window):
 
 
 def test_mode_errors_change_nothing(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     with pytest.raises(GLError, match="^endpick: not picking"):
         endpick()
     with pytest.raises(GLError, match="^pick: the buffer has 4 elements"):
@@ -356,7 +351,7 @@ def test_mode_errors_change_nothing(open_window):
 
 # -- selecting -----------------------------------------------------------------------
 def test_gselect_uses_the_viewing_volume(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     buf = np.zeros(20, np.int16)
     gselect(buf, 20)
     ortho(0.0, 10.0, 0.0, 10.0, -1.0, 1.0)
@@ -379,7 +374,7 @@ def test_gselect_uses_the_viewing_volume(open_window):
 
 # -- hitcode, feedback -----------------------------------------------------------------
 def test_hitcode_is_zero_on_the_vgx(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(25, 25)
     pick(10)
     ortho2(-0.5, 99.5, -0.5, 99.5)
@@ -391,7 +386,7 @@ def test_hitcode_is_zero_on_the_vgx(open_window):
 
 
 def test_feedback_is_not_emulated(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     with pytest.raises(GLError, match="^feedback: not emulated: .*gl/feed.h"):
         feedback(np.zeros(100, np.int16), 100)
     with pytest.raises(GLError, match="^endfeedback: not emulated"):
@@ -419,7 +414,7 @@ def test_mapw_gives_the_line_under_the_cursor(open_window):
 
 
 def test_mapw_leaves_the_window_state_alone(open_window):
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     before = getmatrix()
     makeobj(6)
     viewport(0, 49, 0, 49)
@@ -479,7 +474,7 @@ def test_demo_selects_the_blocks_in_the_box(capsys):
 
 def test_cmov_under_the_cursor_is_a_hit(open_window):
     """pick(3G): cmov causes hits, like drawing; one outside the region does not."""
-    _window(open_window)
+    open_window(100, 100, pixels=True)
     _cursor(50, 50)
     buf = np.zeros(20, np.int16)
     pick(buf, 20)
