@@ -169,3 +169,28 @@ def test_a_damaged_cache_warns_once(tmp_path):
                              env=dict(__import__("os").environ, NUMBA_CACHE_DIR=str(tmp_path)))
     assert env_run.returncode == 0, env_run.stderr[-2000:]
     assert env_run.stderr.count("VGXWarning: numba cache: damaged") == 1
+
+
+def test_two_processes_saving_at_once_never_share_a_data_file(tmp_path):
+    """Two processes read the same index, then save two variants of one
+    kernel, the first one's data written last (numba wrote the index, then
+    the data).  numba gave both the first free data file, so the index named
+    the second variant and the file held the first: the next process ran
+    one variant's code for the other (found by the fuzz, --jobs 2).  Each
+    entry must load its own data."""
+    import vgx_emulator.jit  # noqa: F401  (installs the cache's guards)
+    from numba.core import caching
+    p = caching.IndexDataCacheFile(str(tmp_path), "walk", "stamp")
+    q = caching.IndexDataCacheFile(str(tmp_path), "walk", "stamp")
+    stale = {}
+    p._load_index = q._load_index = lambda: dict(stale)      # both read it empty
+    deferred = []
+    write_data = p._save_data
+    p._save_data = lambda name, data: deferred.append((name, data))
+    p.save(("variant", 1), "code of variant 1")
+    q.save(("variant", 2), "code of variant 2")
+    for name, data in deferred:                              # p's data lands last
+        write_data(name, data)
+    r = caching.IndexDataCacheFile(str(tmp_path), "walk", "stamp")
+    for key, name in r._load_index().items():
+        assert r._load_data(name) == f"code of variant {key[1]}"

@@ -61,6 +61,13 @@ def cache_trouble(what):
                       VGXWarning, stacklevel=2)
 
 
+def _key_number(key):
+    """The data-file number of a cache entry: from its key, so that two
+    entries never share a file whichever processes save them."""
+    import pickle
+    return int(hashlib.sha1(pickle.dumps(key, protocol=4)).hexdigest()[:12], 16)
+
+
 def _tolerate_damaged_cache():
     """A damaged, read-only or foreign numba disk cache never stops a run:
 
@@ -71,14 +78,22 @@ def _tolerate_damaged_cache():
     * a file that cannot be written (a read-only cache or install) is not
       written: numba raised PermissionError from the first new kernel;
     * no writable place for a cache at all: the kernel is not cached (numba
-      raised RuntimeError 'no locator available' at import).
+      raised RuntimeError 'no locator available' at import);
+    * two processes saving kernels of one function at once (``--jobs 2`` of
+      the fuzzer, parallel test runs): numba named a new entry's data file
+      by the first free number of the index it had read, and saved the
+      index before the data, so two processes could give two variants one
+      data file, and a later process loaded one variant's machine code for
+      the other (different pixels, found by the fuzz).  Here the data file's
+      name comes from the entry's key, the data is written before the index
+      names it, and the index is read again just before it is written.
 
-    Each warns once (:func:`cache_trouble`)."""
+    Each trouble warns once (:func:`cache_trouble`)."""
     from numba.core import dispatcher
     cls = caching.IndexDataCacheFile
     if getattr(cls, "_vgx_tolerant", False):
         return
-    load_index, load_data, save = cls._load_index, cls._load_data, cls.save
+    load_index, load_data = cls._load_index, cls._load_data
 
     def _load_index(self):
         try:
@@ -100,7 +115,11 @@ def _tolerate_damaged_cache():
 
     def _save(self, key, data):
         try:
-            return save(self, key, data)
+            name = self._load_index().get(key) or self._data_name(_key_number(key))
+            self._save_data(name, data)          # before any index names it
+            overloads = self._load_index()       # what other processes saved meanwhile
+            overloads[key] = name
+            self._save_index(overloads)
         except OSError as e:
             cache_trouble(f"cannot write {self._index_path} ({e.strerror or e})")
 
