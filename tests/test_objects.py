@@ -77,3 +77,28 @@ def test_replay_again_in_the_same_state(open_window, vgx):
     first = _scene(True)
     again = _scene(True)           # new objects, same states: same pixels
     np.testing.assert_array_equal(first, again)
+
+
+def test_assembled_triangles_are_kept_by_the_machine_and_dropped_by_reset(open_window, vgx):
+    """An object replayed twice is assembled once (the machine's
+    AssemblyCache holds its primitive table); reset() forgets it with the
+    other program state."""
+    open_window(W, H)
+    ortho2(-0.5, W - 0.5, -0.5, H - 0.5)
+    obj = genobj()
+    makeobj(obj)
+    _square(0)
+    _square(8)
+    closeobj()
+    callobj(obj)
+    lrectread(0, 0, 0, 0)                   # flushes the batch
+    kept = len(vgx.assembled.entries)
+    assert kept == 1
+    cached = next(iter(vgx.assembled.entries.values()))
+    assert len(cached[0]) == 4              # two squares, two triangles each
+    callobj(obj)
+    lrectread(0, 0, 0, 0)
+    assert len(vgx.assembled.entries) == 1 and \
+        next(iter(vgx.assembled.entries.values())) is cached
+    vgx.reset()
+    assert len(vgx.assembled.entries) == 0

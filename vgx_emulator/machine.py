@@ -183,6 +183,7 @@ class VGX:
         self.system = {}               # irisgl.system / cursor state (bell, lamps, video ...)
         self.gamma = None              # gammaramp(3G): (256, 3) uint8 LUT, None = identity
         self.maps = display.MapState()  # pop-up/overlay/underlay/cursor maps, setmap, blink
+        self.assembled = geometry.AssemblyCache()   # triangles of replayed primitive tables
 
     # ------------------------------------------------------------------
     # windows and configuration (docs/semantics.md §4, §13)
@@ -332,7 +333,8 @@ class VGX:
                                            st.polymode == 1) else None   # PYM_FILL only
             work = geometry.process_batch(b, st, self.defs, not st.subpixel, st.viewport,
                                           texturing=tex is not None, shade=shade,
-                                          linestyles=self.linestyles)
+                                          linestyles=self.linestyles,
+                                          assembled=self.assembled)
             if st.scrbox_mode == 1:           # scrbox(3G) SB_TRACK
                 scrbox.track(st, work, vp)
             # the maxima before _raster_setup: it marks them stale when the

@@ -69,7 +69,7 @@ def batch_hits(batch, st):
         return False
     extra = () if ud is None else (ud,)
     if batch.klass == FILLED:
-        tris, prov = geometry._assemble_filled(batch, pos, table)
+        tris, prov = geometry.assemble_triangles(batch, pos, table)
         if not len(tris):
             return False
         codes = clip.outcodes(clp, 1.0, 1.0, *extra)

@@ -174,31 +174,39 @@ def texture_coordinates(st, pos, eye4, attrs, xf, xforms):
     return tc[:, :2] / q[:, None]
 
 
-#: assembled triangles of recent primitive tables (see _assemble_filled)
-_ASSEMBLED = OrderedDict()
-_ASSEMBLED_SIZE = 64
+class AssemblyCache:
+    """Assembled triangles of the last ``size`` primitive tables (see
+    :meth:`triangles`).  It holds program state (what the program drew), so
+    the machine owns one and a reset() drops it with the rest."""
+
+    def __init__(self, size=64):
+        self.size = size
+        self.entries = OrderedDict()
+
+    def triangles(self, batch, pos, table):
+        """Triangles of every filled primitive, in submission order.
+        Without concave polygons the result depends only on the primitive
+        table and the swaptmesh marks, so it is kept: a display list
+        replayed every frame (or every pass) is assembled once, as a
+        compiled display list would be."""
+        if table[:, 3].any():
+            return assemble_triangles(batch, pos, table)
+        key = (table.tobytes(), tuple(batch.swaps))
+        hit = self.entries.get(key)
+        if hit is None:
+            hit = self.entries[key] = assemble_triangles(batch, pos, table)
+            if len(self.entries) > self.size:
+                self.entries.popitem(last=False)
+        else:
+            self.entries.move_to_end(key)
+        return hit
 
 
-def _assemble_filled(batch, pos, table):
-    """Triangles of every filled primitive, in submission order.  Without
-    concave polygons the result depends only on the primitive table and
-    the swaptmesh marks, so it is kept for the last _ASSEMBLED_SIZE tables:
-    a display list replayed every frame (or every pass) is assembled once,
-    as a compiled display list would be."""
-    if table[:, 3].any():
-        return _assemble_table(batch, pos, table)
-    key = (table.tobytes(), tuple(batch.swaps))
-    hit = _ASSEMBLED.get(key)
-    if hit is None:
-        hit = _ASSEMBLED[key] = _assemble_table(batch, pos, table)
-        if len(_ASSEMBLED) > _ASSEMBLED_SIZE:
-            _ASSEMBLED.popitem(last=False)
-    else:
-        _ASSEMBLED.move_to_end(key)
-    return hit
-
-
-def _assemble_table(batch, pos, table):
+def assemble_triangles(batch, pos, table):
+    """Triangles (T, 3) and provoking vertices of every filled primitive of
+    a batch's primitive table, in submission order (polygons as fans,
+    concave ones triangulated, qstrips, tmeshes with their swaptmesh marks;
+    docs/semantics.md §3)."""
     kinds, starts, counts = table[:, 0], table[:, 1], table[:, 2]
     concave = table[:, 3] != 0
     seq = np.arange(len(table))
@@ -251,10 +259,11 @@ def _callers(batch):
 
 
 def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=True,
-                  linestyles=None):
+                  linestyles=None, assembled=None):
     """Run the geometry pipeline over ``batch``; returns a WindowWork.
     ``shade`` False (the pass uses no colour): vertex colours pass through
-    unlit."""
+    unlit.  ``assembled``: the machine's AssemblyCache (None: assemble
+    anew)."""
     pos, attrs = batch.arrays()
     with np.errstate(all="ignore"):     # non-finite input is dropped with a VGXWarning below
         eye4, clp, xf = _transform(pos, attrs, batch.xforms)
@@ -282,7 +291,8 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     if mode in ("line", "point"):
         work.klass = LINES if mode == "line" else POINTS
     if mode == "fill":
-        tris, prov = _assemble_filled(batch, pos, table)
+        tris, prov = (assembled.triangles(batch, pos, table) if assembled is not None
+                      else assemble_triangles(batch, pos, table))
         codes = clip.outcodes(clp, gx, gy, ud)
         fate = clip.classify(tris, prov, bad, codes)
         work.dropped = int(np.count_nonzero(fate == clip.DROPPED))
