@@ -54,8 +54,10 @@ def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None
     if work.klass == FILLED:
         if work.tris is None or len(work.tris) == 0:
             return 0
-        setup = setup_triangles(work.X, work.Y, work.tris, cull,
-                                ip[0], ip[1], ip[2], ip[3])
+        setup = setup_triangles(work.X, work.Y, work.Z, work.C, work.CB, work.prov, work.tris,
+                                cull, ip[0], ip[1], ip[2], ip[3],
+                                interp=key.gouraud and key.color and not key.texture,
+                                cmode=key.cmode, twoside=key.twoside)
         if key.texture:
             tk = texture_inputs(work, tex[0], tex[1])
             tc = work.TC
@@ -64,7 +66,7 @@ def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None
         _tris.triangle_kernel(key)(setup, work.X, work.Y, work.Z, work.C, work.CB,
                                    work.prov, planes, ip, tc, tk,
                                    _NO_ZMAX if zmaxima is None else zmaxima)
-        return int(setup[5].sum())
+        return int(setup[2].sum())
     if work.klass == LINES:
         if len(work.seg0) == 0:
             return 0

@@ -2,7 +2,9 @@
 
 ``setup_triangles`` runs once per batch: orientation, backface/frontface
 culling, CCW ordering, integer edge equations with the fill rule
-(:mod:`scan.fixed`), bounding box clipped to the scissor, 1/area.
+(:mod:`scan.fixed`), bounding box clipped to the scissor, 1/area, and the
+fixed-point z and colour planes, one record row per triangle (the ``T_*``
+columns).  The walker then only steps what setup computed.
 
 ``triangle_kernel(key)`` returns the walker compiled for one raster state
 (:mod:`raster.variants`).  It runs over framebuffer bands of
@@ -17,7 +19,7 @@ Per triangle row the walker solves the three integer edge inequalities for
 the exact span of covered pixels, so the fill rule is decided per row, not
 per pixel: each edge's floor quotient is divided once per triangle and band
 and then stepped row to row with its remainder (``edge_dda``/``edge_step``,
-exact integers, no rounding).  Along the
+exact integers, no rounding; ``span_bounds``).  Along the
 span (the span processor):
 
 * z is a fixed-point plane: per triangle, its value at the box corner pixel
@@ -33,21 +35,28 @@ span (the span processor):
   not fit int64 over its box (plane_fixed) evaluates each span start
   exactly instead.
 * spans that cannot pass the z test are skipped against the z bank's
-  per-segment maxima when that changes nothing (framebuffer/zmax.py).
-* Gouraud colours are the same planes with ``CFRAC`` bits; flat colour is
-  one packed word per triangle (the provoking vertex).
+  per-segment maxima when that changes nothing (``z_hidden``,
+  framebuffer/zmax.py).
+* Gouraud colours are the same planes with ``CFRAC`` bits, stepped in
+  int32 (``colour_dda``, ``gouraud_word``); flat colour is one packed word
+  per triangle (the provoking vertex).
 * textured triangles compute barycentric weights per pixel in float64
   (texture coordinates perspective-correct: s/w, t/w and 1/w interpolated,
   then divided), sample and apply the texture environment
-  (raster/texture.py); their z is the same plane as untextured ones.
+  (``texel_word``, raster/texture.py), in the texture variants only; their
+  z is the same plane as untextured ones.
 
 Each pixel then goes through the stages of the variant
 (:func:`raster.fragment.stage_function`), a pure function written without
 branches on runtime state; the walker loads and stores the row views
 around it, so the span loop of the common variants (z test and write,
-stencil counting, plain colour writes) compiles to SIMD code.  A span shorter than ``config.PAD_SPAN`` runs over a whole number
-of vectors (``VEC`` pixels): the extra pixels of the row fail like a 0
-pattern bit, so that short spans pay no scalar remainder loop.
+stencil counting, plain colour writes) compiles to SIMD code.  A span
+shorter than ``config.PAD_SPAN`` runs over a whole number of vectors
+(``VEC`` pixels; ``padded_span``): the extra pixels of the row fail like a
+0 pattern bit, so that short spans pay no scalar remainder loop.  The
+helpers called per pixel or per span with arrays are ``inline`` (numba
+inlines them before compiling; a call would cost reference counting on
+each array), the others ``helper``.
 """
 import functools
 import itertools
@@ -58,7 +67,7 @@ import numba
 import numpy as np
 
 from .. import config
-from ..jit import add32, helper, kernel, sra32
+from ..jit import add32, helper, inline, kernel, sra32
 from ..raster import fragment
 from ..raster import texture as _tex
 from ..raster.blend import key_terms
@@ -71,15 +80,34 @@ ZFRAC, CFRAC = config.ZFRAC, config.CFRAC
 #: literal number of bits)
 ZONE = float(1 << ZFRAC)
 CONE = float(1 << CFRAC)
+#: half a unit of the colour DDAs (they start there so that >> rounds)
+CHALF = 1 << (CFRAC - 1)
 
 CULL_NONE, CULL_BACK, CULL_FRONT, CULL_BOTH = 0, 1, 2, 3
+
+# The per-triangle integer record of setup_triangles, column by column.
+T_VERTS = 0     # 3: vertices a, b, c in CCW order
+T_BOX = 3       # 4: the box in pixels, x0, x1, y0, y1, clipped to the scissor
+T_EDGES = 7     # 9: A, B, C of edges 0, 1, 2 (edge k is opposite vertex k)
+T_OFFSET = 16   # 3: 0 when edge k owns its pixels (fill rule), else 1 (unbiased weights)
+T_Z = 19        # 3: the z plane (ZFRAC bits) at the box corner, per pixel, per row
+T_ZOK = 22      # 1: the z plane fits PLANE_LIMIT (else span starts are exact)
+T_WORD = 23     # 1: the flat colour word (provoking vertex)
+T_COLOUR = 24   # 12: r, g, b, a planes (CFRAC bits): corner, per pixel, per row
+T_COK = 36      # 1: every colour plane fits (else span starts are exact)
+T_BACK = 37     # 1: the triangle is back-facing (its colours are CB when two-sided)
+T_COLUMNS = 38
 
 
 def _make_setup():
     @kernel
-    def setup_kernel(X, Y, tris, cull, sx0, sx1, sy0, sy1, out):
-        """Fill ``out`` (setup_triangles) for the triangles."""
-        edges, verts, box, inv_area, back, valid = out
+    def setup_kernel(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1, flags,
+                     rec, inv_area, valid):
+        """Fill ``rec``, ``inv_area`` and ``valid`` (setup_triangles).
+        flags: (Gouraud planes wanted, colour-map mode, two-sided)."""
+        interp = flags[0] != 0
+        cmode = flags[1] != 0
+        twoside = flags[2] != 0
         for i in range(tris.shape[0]):
             a = tris[i, 0]
             b = tris[i, 1]
@@ -95,22 +123,6 @@ def _make_setup():
             if is_back:
                 b, c = c, b
                 area = -area
-            verts[i, 0] = a
-            verts[i, 1] = b
-            verts[i, 2] = c
-            # edge k opposite vertex k: (b->c), (c->a), (a->b)
-            e0 = edge_coefficients(X[b], Y[b], X[c], Y[c])
-            e1 = edge_coefficients(X[c], Y[c], X[a], Y[a])
-            e2 = edge_coefficients(X[a], Y[a], X[b], Y[b])
-            edges[i, 0, 0] = e0[0]
-            edges[i, 0, 1] = e0[1]
-            edges[i, 0, 2] = e0[2]
-            edges[i, 1, 0] = e1[0]
-            edges[i, 1, 1] = e1[1]
-            edges[i, 1, 2] = e1[2]
-            edges[i, 2, 0] = e2[0]
-            edges[i, 2, 1] = e2[1]
-            edges[i, 2, 2] = e2[2]
             xmin = min(X[a], min(X[b], X[c]))
             xmax = max(X[a], max(X[b], X[c]))
             ymin = min(Y[a], min(Y[b], Y[c]))
@@ -122,34 +134,110 @@ def _make_setup():
             y1 = min(ymax >> SHIFT, sy1)
             if x0 > x1 or y0 > y1:
                 continue
-            box[i, 0] = x0
-            box[i, 1] = x1
-            box[i, 2] = y0
-            box[i, 3] = y1
-            inv_area[i] = 1.0 / area
-            back[i] = is_back
+            rec[i, T_VERTS] = a
+            rec[i, T_VERTS + 1] = b
+            rec[i, T_VERTS + 2] = c
+            rec[i, T_BOX] = x0
+            rec[i, T_BOX + 1] = x1
+            rec[i, T_BOX + 2] = y0
+            rec[i, T_BOX + 3] = y1
+            # edge k opposite vertex k: (b->c), (c->a), (a->b)
+            e = (edge_coefficients(X[b], Y[b], X[c], Y[c]),
+                 edge_coefficients(X[c], Y[c], X[a], Y[a]),
+                 edge_coefficients(X[a], Y[a], X[b], Y[b]))
+            for k in range(3):
+                rec[i, T_EDGES + 3 * k] = e[k][0]
+                rec[i, T_EDGES + 3 * k + 1] = e[k][1]
+                rec[i, T_EDGES + 3 * k + 2] = e[k][2]
+            rec[i, T_OFFSET] = 0 if owns_edge(X[b], Y[b], X[c], Y[c]) else 1
+            rec[i, T_OFFSET + 1] = 0 if owns_edge(X[c], Y[c], X[a], Y[a]) else 1
+            rec[i, T_OFFSET + 2] = 0 if owns_edge(X[a], Y[a], X[b], Y[b]) else 1
+            ia = 1.0 / area
+            inv_area[i] = ia
+            rec[i, T_BACK] = is_back
             valid[i] = True
+            triangle_planes(rec, i, X, Y, Z, CB if (twoside and is_back) else C, prov[i],
+                            ia, interp, cmode)
 
     return setup_kernel
+
+
+@inline
+def triangle_planes(rec, i, X, Y, Z, cols, pv, ia, interp, cmode):
+    """The fixed-point planes of one set-up triangle (row ``i`` of ``rec``): z and,
+    when ``interp``, the four Gouraud colours, each as its value at the box
+    corner pixel with its steps per pixel and per row (plane_fixed), from
+    the barycentric weights of vertices b and c there; and the flat colour
+    word of the provoking vertex ``pv``."""
+    a = rec[i, T_VERTS]
+    b = rec[i, T_VERTS + 1]
+    c = rec[i, T_VERTS + 2]
+    step = float(1 << SHIFT) * ia
+    dwb = rec[i, T_EDGES + 3] * step
+    dwc = rec[i, T_EDGES + 6] * step
+    dwby = rec[i, T_EDGES + 4] * step
+    dwcy = rec[i, T_EDGES + 7] * step
+    xb = rec[i, T_BOX]
+    yb = rec[i, T_BOX + 2]
+    wbr = (rec[i, T_EDGES + 3] * (xb << SHIFT) + rec[i, T_EDGES + 4] * (yb << SHIFT)
+           + rec[i, T_EDGES + 5] + rec[i, T_OFFSET + 1]) * ia
+    wcr = (rec[i, T_EDGES + 6] * (xb << SHIFT) + rec[i, T_EDGES + 7] * (yb << SHIFT)
+           + rec[i, T_EDGES + 8] + rec[i, T_OFFSET + 2]) * ia
+    bw = rec[i, T_BOX + 1] - xb + 1
+    bh = rec[i, T_BOX + 3] - yb + 1
+    za = Z[a]
+    zba = Z[b] - za
+    zca = Z[c] - za
+    zref, dz, dzy, zok = plane_fixed(za, zba, zca, wbr, wcr, dwb, dwc, dwby, dwcy, ZONE, bw, bh)
+    if not zok:
+        dz = to_fixed(zba * dwb + zca * dwc, ZONE)
+    rec[i, T_Z] = zref
+    rec[i, T_Z + 1] = dz
+    rec[i, T_Z + 2] = dzy
+    rec[i, T_ZOK] = zok
+    rec[i, T_WORD] = fragment.colour_word(cmode, cols[pv, 0], cols[pv, 1], cols[pv, 2],
+                                          cols[pv, 3])
+    if not interp:
+        return
+    cok = True
+    for k in range(4):
+        ca = cols[a, k]
+        ref, d, dy, ok = plane_fixed(ca, cols[b, k] - ca, cols[c, k] - ca,
+                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
+        rec[i, T_COLOUR + 3 * k] = ref
+        rec[i, T_COLOUR + 3 * k + 1] = d
+        rec[i, T_COLOUR + 3 * k + 2] = dy
+        cok = cok and ok
+    rec[i, T_COK] = cok
+    if not cok:
+        for k in range(4):
+            ca = cols[a, k]
+            rec[i, T_COLOUR + 3 * k + 1] = to_fixed(
+                (cols[b, k] - ca) * dwb + (cols[c, k] - ca) * dwc, CONE)
 
 
 _setup_kernel = _make_setup()
 
 
-def setup_triangles(X, Y, tris, cull, sx0, sx1, sy0, sy1):
-    """Edge equations and boxes for T triangles.
-
-    Returns (edges (T, 3, 3) int64, verts (T, 3) int64 in CCW order, box
-    (T, 4) int64 [x0, x1, y0, y1] in pixels, inv_area (T,), back (T,) bool,
-    valid (T,) bool); culled, degenerate and off-scissor triangles are not
-    valid.  Edge k is opposite vertex k, so E_k / area is the barycentric
-    weight of vertex k.  (The arrays are made here, not in the kernel: with
-    an empty cache numba's np.zeros in a kernel costs its own compile.)"""
+def setup_triangles(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1,
+                    interp=False, cmode=False, twoside=False):
+    """Triangle setup for T triangles: (rec (T, T_COLUMNS) int64, inv_area
+    (T,), valid (T,) bool).  ``rec`` holds, per the T_* columns, the CCW
+    vertices, the box, the integer edge equations with the fill rule, and
+    the fixed-point z and colour planes the walker steps (computed once per
+    triangle, not once per band).  Culled, degenerate and off-scissor
+    triangles are not valid.  Edge k is opposite vertex k, so E_k / area is
+    the barycentric weight of vertex k.  (The arrays are made here, not in
+    the kernel: with an empty cache numba's np.zeros in a kernel costs its
+    own compile.)"""
     t = len(tris)
-    out = (np.zeros((t, 3, 3), np.int64), np.zeros((t, 3), np.int64),
-           np.zeros((t, 4), np.int64), np.zeros(t), np.zeros(t, bool), np.zeros(t, bool))
-    _setup_kernel(X, Y, tris, cull, sx0, sx1, sy0, sy1, out)
-    return out
+    rec = np.zeros((t, T_COLUMNS), np.int64)
+    inv_area = np.zeros(t)
+    valid = np.zeros(t, bool)
+    flags = np.array([interp, cmode, twoside], np.int64)
+    _setup_kernel(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1, flags,
+                  rec, inv_area, valid)
+    return rec, inv_area, valid
 
 _kernels = {}
 
@@ -272,8 +360,9 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
         # than they save, and when another process holds the other core
         # the batch waits for it (measured: Heidmann's 36 small lit-pass
         # batches took 246 ms on two threads on a busy machine, 45 ms on one)
-        box, valid = setup[2], setup[5]
-        area = ((box[:, 1] - box[:, 0] + 1) * (box[:, 3] - box[:, 2] + 1))[valid].sum()
+        rec, valid = setup[0], setup[2]
+        area = ((rec[:, T_BOX + 1] - rec[:, T_BOX] + 1) *
+                (rec[:, T_BOX + 3] - rec[:, T_BOX + 2] + 1) * valid).sum()
         if area < config.PARALLEL_MIN_PIXELS:
             n = 1
     if n <= 1:
@@ -301,6 +390,103 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
             job.result()
 
 
+@helper
+def span_bounds(A0, q0, A1, q1, A2, q2, xl, xr):
+    """The covered pixels [xl, xr] of a row of the box [xl, xr]: the three
+    edges' exact quotients for the row (edge_dda, edge_step); xl > xr when
+    the row is empty."""
+    xl, xr = edge_clip(A0, q0, xl, xr)
+    xl, xr = edge_clip(A1, q1, xl, xr)
+    return edge_clip(A2, q2, xl, xr)
+
+
+@helper
+def exact_start(v0, dvb, dvc, wb, wc, one):
+    """A linear attribute at a span's first pixel from its exact weights wb,
+    wc (a sliver whose plane does not fit int64, plane_fixed)."""
+    return to_fixed(v0 + dvb * wb + dvc * wc, one)
+
+
+@inline
+def colour_dda(ref, d, dy, ox, oy, early, ok, va, vb, vc, wb, wc):
+    """The int32 DDA of one Gouraud colour at the loop's first pixel, ``early``
+    pixels before the span's first (padded_span), half a unit up so that
+    ``>> CFRAC`` rounds: from the triangle's plane (ref at the box corner,
+    steps d per pixel, dy per row; the span starts ox, oy from the corner)
+    or, for a sliver whose plane does not fit (not ok), from the exact
+    weights.  (The padding pixels may wrap; they are never stored.)"""
+    v = ref + dy * oy + d * ox if ok else exact_start(va, vb - va, vc - va, wb, wc, CONE)
+    return np.int32(v + CHALF - d * early)
+
+
+@inline
+def z_hidden(zf, dz, xl, xr, zlo, zhi, zrow):
+    """True when no pixel of the span [xl, xr] can pass a LESS/LEQUAL z test:
+    the span's least quantized z (at one end: z is monotonic along it) is
+    above the maxima of every z segment it covers (framebuffer/zmax.py)."""
+    least = min(max(min(zf, zf + dz * (xr - xl)) >> ZFRAC, zlo), zhi)
+    most = zrow[xl >> ZSEG_SHIFT]
+    for seg in range((xl >> ZSEG_SHIFT) + 1, (xr >> ZSEG_SHIFT) + 1):
+        most = max(most, zrow[seg])
+    return least > most
+
+
+@helper
+def padded_span(xl, xr, padspan, wid):
+    """(first pixel, count) of the loop over the span [xl, xr]: a span
+    shorter than ``padspan`` (config.PAD_SPAN) runs over whole vectors of
+    VEC pixels, at least two, inside a row of ``wid`` pixels: the loop ends
+    late or, near the row's end, starts early.  The pixels outside [xl, xr]
+    fail like a 0 pattern bit and store what they hold."""
+    lo = xl
+    nv = xr + 1 - xl
+    if nv < padspan:
+        n = max((nv + VEC - 1) & -VEC, 2 * VEC)
+        if n <= wid:
+            return min(xl, wid - n), n
+    return lo, nv
+
+
+@inline
+def gouraud_word(cmode, cmax, r32, g32, b32, a32):
+    """The packed colour of a pixel from its colour DDAs (CFRAC bits),
+    clamped: 0xAABBGGRR, or the index in colour-map mode."""
+    ri = min(max(sra32(r32, CFRAC), np.int32(0)), np.int32(cmax))
+    if cmode:
+        return ri & 0xFFF
+    gi = min(max(sra32(g32, CFRAC), np.int32(0)), np.int32(255))
+    bi = min(max(sra32(b32, CFRAC), np.int32(0)), np.int32(255))
+    ai = min(max(sra32(a32, CFRAC), np.int32(0)), np.int32(255))
+    return (ai << 24) | (bi << 16) | (gi << 8) | ri
+
+
+@inline
+def texel_word(cmode, gouraud, w0, w1, w2, cols, a, b, c, pv, TC, tex, tlevel, tbil):
+    """A textured pixel's colour word (texture(3G), tevdef(3G)): the
+    texture coordinates interpolated perspective-correct from the
+    barycentric weights w0, w1, w2 (s/w, t/w, 1/w, then divided), sampled
+    (raster/texture.py) and combined with the pixel's Gouraud or flat
+    colour by the environment."""
+    texels, tinfo, tsel, tp = tex
+    if gouraud:
+        r = w0 * cols[a, 0] + w1 * cols[b, 0] + w2 * cols[c, 0]
+        g = w0 * cols[a, 1] + w1 * cols[b, 1] + w2 * cols[c, 1]
+        bb = w0 * cols[a, 2] + w1 * cols[b, 2] + w2 * cols[c, 2]
+        al = w0 * cols[a, 3] + w1 * cols[b, 3] + w2 * cols[c, 3]
+    else:
+        r = cols[pv, 0]
+        g = cols[pv, 1]
+        bb = cols[pv, 2]
+        al = cols[pv, 3]
+    iw = w0 * TC[a, 2] + w1 * TC[b, 2] + w2 * TC[c, 2]
+    ts = (w0 * TC[a, 0] + w1 * TC[b, 0] + w2 * TC[c, 0]) / iw
+    tt = (w0 * TC[a, 1] + w1 * TC[b, 1] + w2 * TC[c, 1]) / iw
+    tr, tg, tb, ta = _tex.sample(texels, tinfo, tlevel, tbil, ts, tt, tp[0] != 0, tp[1] != 0)
+    r, g, bb, al = _tex.environment(int(tp[2]), r, g, bb, al, tr, tg, tb, ta,
+                                    tp[3], tp[4], tp[5])
+    return fragment.colour_word(cmode, r, g, bb, al)
+
+
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                           stencil, blend, logic, atest, pattern, cmask, texture, dual):
     key = (ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend, logic, atest,
@@ -309,17 +495,16 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     bterms = key_terms(blend)          # the blend factors of a folded pair
     band_rows = config.BAND_ROWS
     zhalf = 1 << (ZFRAC - 1)
-    chalf = 1 << (CFRAC - 1)
     interp = gouraud and color and not texture
     cmax = 0xFFF if cmode else 255
-    pad = not texture
+    pad = not texture       # texture sampling needs the pixel inside the triangle
 
     @kernel(variant=key)
     def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
         """Rows of every triangle in the bands starting at rows ``bands``
-        (run_bands), in submission order."""
-        edges, verts, box, inv_area, back, valid = setup
-        texels, tinfo, tsel, tp = tex
+        (run_bands), in submission order; the triangles' edges and planes
+        come from setup_triangles."""
+        rec, inv_area, valid = setup
         cb0, cb1, zb, sb, pat = planes
         prm = fragment.params(ip)
         bt = fragment.blend_terms(blend, bterms, prm)
@@ -332,7 +517,8 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         zhi32 = np.int32(zhi)
         sy1 = prm[fragment.P_SY1]
         skip = ztest and prm[fragment.P_ZMAX] != 0
-        padspan = prm[fragment.P_PADSPAN]
+        padspan = prm[fragment.P_PADSPAN] if pad else 0
+        # 1-pixel views standing for the banks the variant does not use
         cr0_dummy = cb0[0]
         cr1_dummy = cb1[0]
         zr_dummy = zb[0]
@@ -345,83 +531,36 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
             for i in range(valid.shape[0]):
                 if not valid[i]:
                     continue
-                y0 = max(box[i, 2], ylo)
-                y1 = min(box[i, 3], yhi)
+                y0 = max(rec[i, T_BOX + 2], ylo)
+                y1 = min(rec[i, T_BOX + 3], yhi)
                 if y0 > y1:
                     continue
-                a = verts[i, 0]
-                b = verts[i, 1]
-                c = verts[i, 2]
+                a = rec[i, T_VERTS]
+                b = rec[i, T_VERTS + 1]
+                c = rec[i, T_VERTS + 2]
                 ia = inv_area[i]
-                cols = CB if (twoside and back[i]) else C
-                A0 = edges[i, 0, 0]
-                B0 = edges[i, 0, 1]
-                C0 = edges[i, 0, 2]
-                A1 = edges[i, 1, 0]
-                B1 = edges[i, 1, 1]
-                C1 = edges[i, 1, 2]
-                A2 = edges[i, 2, 0]
-                B2 = edges[i, 2, 1]
-                C2 = edges[i, 2, 2]
-                # unbiased offsets for the weights (the fill bias is 0 or -1)
-                o0 = 0 if owns_edge(X[b], Y[b], X[c], Y[c]) else 1
-                o1 = 0 if owns_edge(X[c], Y[c], X[a], Y[a]) else 1
-                o2 = 0 if owns_edge(X[a], Y[a], X[b], Y[b]) else 1
-                # per-pixel and per-row steps of the barycentric weights of b
-                # and c, and the weights at the box corner pixel (xb, yb)
-                step = float(1 << SHIFT) * ia
-                dwb = A1 * step
-                dwc = A2 * step
-                dwby = B1 * step
-                dwcy = B2 * step
-                xb = box[i, 0]
-                yb = box[i, 2]
-                wbr = (A1 * (xb << SHIFT) + B1 * (yb << SHIFT) + C1 + o1) * ia
-                wcr = (A2 * (xb << SHIFT) + B2 * (yb << SHIFT) + C2 + o2) * ia
-                za = Z[a]
-                zba = Z[b] - za
-                zca = Z[c] - za
-                bw = box[i, 1] - xb + 1
-                bh = box[i, 3] - yb + 1
-                zref, dz, dzy, zok = plane_fixed(za, zba, zca, wbr, wcr, dwb, dwc,
-                                                 dwby, dwcy, ZONE, bw, bh)
-                if not zok:
-                    dz = to_fixed(zba * dwb + zca * dwc, ZONE)
-                # flat colour: the provoking vertex
-                pv = prov[i]
-                word = fragment.colour_word(cmode, cols[pv, 0], cols[pv, 1],
-                                            cols[pv, 2], cols[pv, 3])
-                dr = dg = db = da = np.int64(0)
-                rref = gref = bref = aref = np.int64(0)
-                dry = dgy = dby = day = np.int64(0)
-                cok = False
-                if interp:
-                    ra = cols[a, 0]
-                    ga = cols[a, 1]
-                    ba = cols[a, 2]
-                    aa = cols[a, 3]
-                    rref, dr, dry, rok = plane_fixed(ra, cols[b, 0] - ra, cols[c, 0] - ra,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
-                    gref, dg, dgy, gok = plane_fixed(ga, cols[b, 1] - ga, cols[c, 1] - ga,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
-                    bref, db, dby, bok = plane_fixed(ba, cols[b, 2] - ba, cols[c, 2] - ba,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
-                    aref, da, day, aok = plane_fixed(aa, cols[b, 3] - aa, cols[c, 3] - aa,
-                                                     wbr, wcr, dwb, dwc, dwby, dwcy, CONE, bw, bh)
-                    cok = rok and gok and bok and aok
-                    if not cok:
-                        dr = to_fixed((cols[b, 0] - ra) * dwb + (cols[c, 0] - ra) * dwc, CONE)
-                        dg = to_fixed((cols[b, 1] - ga) * dwb + (cols[c, 1] - ga) * dwc, CONE)
-                        db = to_fixed((cols[b, 2] - ba) * dwb + (cols[c, 2] - ba) * dwc, CONE)
-                        da = to_fixed((cols[b, 3] - aa) * dwb + (cols[c, 3] - aa) * dwc, CONE)
+                cols = CB if (twoside and rec[i, T_BACK] != 0) else C
+                A0, B0, C0 = rec[i, T_EDGES], rec[i, T_EDGES + 1], rec[i, T_EDGES + 2]
+                A1, B1, C1 = rec[i, T_EDGES + 3], rec[i, T_EDGES + 4], rec[i, T_EDGES + 5]
+                A2, B2, C2 = rec[i, T_EDGES + 6], rec[i, T_EDGES + 7], rec[i, T_EDGES + 8]
+                o0, o1, o2 = rec[i, T_OFFSET], rec[i, T_OFFSET + 1], rec[i, T_OFFSET + 2]
+                xb = rec[i, T_BOX]
+                yb = rec[i, T_BOX + 2]
+                zref, dz, dzy, zok = rec[i, T_Z], rec[i, T_Z + 1], rec[i, T_Z + 2], rec[i, T_ZOK] != 0
+                rc, dr, dry = rec[i, T_COLOUR], rec[i, T_COLOUR + 1], rec[i, T_COLOUR + 2]
+                gc, dg, dgy = rec[i, T_COLOUR + 3], rec[i, T_COLOUR + 4], rec[i, T_COLOUR + 5]
+                bc, db, dby = rec[i, T_COLOUR + 6], rec[i, T_COLOUR + 7], rec[i, T_COLOUR + 8]
+                ac, da, day = rec[i, T_COLOUR + 9], rec[i, T_COLOUR + 10], rec[i, T_COLOUR + 11]
+                cok = rec[i, T_COK] != 0
+                word = rec[i, T_WORD]
                 # per-pixel colour steps in int32: two covered pixels of a row
                 # differ by at most 0xFFF, so a step of a longer span fits
                 dr32 = np.int32(dr)
                 dg32 = np.int32(dg)
                 db32 = np.int32(db)
                 da32 = np.int32(da)
-                tlevel = tsel[i] >> 1 if texture else 0
-                tbil = (tsel[i] & 1) == 1 if texture else False
+                tlevel = tex[2][i] >> 1 if texture else 0
+                tbil = (tex[2][i] & 1) == 1 if texture else False
                 # the edges' row values and their exact quotients, stepped per row
                 py = y0 << SHIFT
                 ev0 = B0 * py + C0
@@ -434,12 +573,12 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                 q1, m1, D1, sq1, sm1 = edge_dda(A1, ev1, S1)
                 q2, m2, D2, sq2, sm2 = edge_dda(A2, ev2, S2)
                 for y in range(y0, y1 + 1):
-                    r0 = ev0
-                    r1 = ev1
-                    r2 = ev2
-                    xl, xr = edge_clip(A0, q0, box[i, 0], box[i, 1])
-                    xl, xr = edge_clip(A1, q1, xl, xr)
-                    xl, xr = edge_clip(A2, q2, xl, xr)
+                    xl, xr = span_bounds(A0, q0, A1, q1, A2, q2, rec[i, T_BOX], rec[i, T_BOX + 1])
+                    px = xl << SHIFT
+                    # exact edge values at the span's first pixel
+                    e0 = A0 * px + ev0
+                    e1 = A1 * px + ev1
+                    e2 = A2 * px + ev2
                     ev0 += S0
                     ev1 += S1
                     ev2 += S2
@@ -448,81 +587,40 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     q2, m2 = edge_step(q2, m2, D2, sq2, sm2)
                     if xl > xr:
                         continue
-                    # row views of the banks the variant uses (the others are
-                    # 1 x 1 dummies, viewed once per call)
-                    cr0 = cb0[y] if color else cr0_dummy
-                    cr1 = cb1[y] if (color and dual) else cr1_dummy
-                    zr = zb[y] if ztest else zr_dummy
-                    sr = sb[y] if stencil else sr_dummy
-                    px = xl << SHIFT
-                    # exact edge values at the span's first pixel
-                    e0 = A0 * px + r0
-                    e1 = A1 * px + r1
-                    e2 = A2 * px + r2
-                    # span start values: the fixed-point planes at (xl, y), or
-                    # for a sliver outside their bounds the exact weights
+                    # span start values: the planes at (xl, y), or for a
+                    # sliver outside their bounds the exact weights
                     ox = xl - xb
                     oy = y - yb
+                    wb = (e1 + o1) * ia
+                    wc = (e2 + o2) * ia
                     if zok:
-                        z0 = zref + dzy * oy + dz * ox
+                        zf = zref + dzy * oy + dz * ox + zhalf
                     else:
-                        z0 = to_fixed(za + zba * ((e1 + o1) * ia) + zca * ((e2 + o2) * ia),
-                                      ZONE)
-                    cr = cg = cbl = ca = np.int64(0)
-                    if interp:
-                        if cok:
-                            cr = rref + dry * oy + dr * ox
-                            cg = gref + dgy * oy + dg * ox
-                            cbl = bref + dby * oy + db * ox
-                            ca = aref + day * oy + da * ox
-                        else:
-                            wb = (e1 + o1) * ia
-                            wc = (e2 + o2) * ia
-                            cr = to_fixed(cols[a, 0] + (cols[b, 0] - cols[a, 0]) * wb
-                                          + (cols[c, 0] - cols[a, 0]) * wc, CONE)
-                            cg = to_fixed(cols[a, 1] + (cols[b, 1] - cols[a, 1]) * wb
-                                          + (cols[c, 1] - cols[a, 1]) * wc, CONE)
-                            cbl = to_fixed(cols[a, 2] + (cols[b, 2] - cols[a, 2]) * wb
-                                           + (cols[c, 2] - cols[a, 2]) * wc, CONE)
-                            ca = to_fixed(cols[a, 3] + (cols[b, 3] - cols[a, 3]) * wb
-                                          + (cols[c, 3] - cols[a, 3]) * wc, CONE)
-                    # the DDAs start half a unit up so that >> rounds to nearest
-                    zf = z0 + zhalf
-                    if skip and zok:
-                        # quantized z is monotonic along the span: its least
-                        # value is at one end (zok: dz is bounded, no overflow)
-                        zq_least = min(max(min(zf, zf + dz * (xr - xl)) >> ZFRAC, zlo), zhi)
-                        zrow = zmax[y]
-                        most = zrow[xl >> ZSEG_SHIFT]
-                        for seg in range((xl >> ZSEG_SHIFT) + 1, (xr >> ZSEG_SHIFT) + 1):
-                            most = max(most, zrow[seg])
-                        if zq_least > most:
-                            continue
-                    # a span shorter than P_PADSPAN runs over whole vectors
-                    # (config.PAD_SPAN): its loop ends late, or near the end of
-                    # the row starts early, inside the row; the pixels outside
-                    # [xl, xr] fail like a 0 pattern bit and store what they
-                    # hold.  (Not for textures: their sampling needs the
-                    # pixel inside the triangle.)
-                    lo = xl
-                    nv = xr + 1 - xl
-                    if pad and nv < padspan:
-                        nv = max((nv + VEC - 1) & -VEC, 2 * VEC)
-                        if nv <= wid:
-                            lo = min(xl, wid - nv)
-                        else:
-                            nv = xr + 1 - xl
+                        zf = exact_start(Z[a], Z[b] - Z[a], Z[c] - Z[a], wb, wc, ZONE) + zhalf
+                    if skip and zok and z_hidden(zf, dz, xl, xr, zlo, zhi, zmax[y]):
+                        continue
+                    lo, nv = padded_span(xl, xr, padspan, wid)
                     early = xl - lo
                     kin0 = np.int32(early)
                     kin1 = np.int32(xr - lo)
                     zf -= dz * early
-                    # colours step in int32 (CFRAC = 16 keeps 0xFFF << 16 inside
-                    # it; numba widens int32 operations, hence the casts; the
-                    # padding pixels may wrap, they are never stored)
-                    r32 = np.int32(cr + chalf - dr * early)
-                    g32 = np.int32(cg + chalf - dg * early)
-                    b32 = np.int32(cbl + chalf - db * early)
-                    a32 = np.int32(ca + chalf - da * early)
+                    # the colour DDAs (int32)
+                    r32 = g32 = b32 = a32 = np.int32(0)
+                    if interp:
+                        r32 = colour_dda(rc, dr, dry, ox, oy, early, cok, cols[a, 0],
+                                         cols[b, 0], cols[c, 0], wb, wc)
+                        g32 = colour_dda(gc, dg, dgy, ox, oy, early, cok, cols[a, 1],
+                                         cols[b, 1], cols[c, 1], wb, wc)
+                        b32 = colour_dda(bc, db, dby, ox, oy, early, cok, cols[a, 2],
+                                         cols[b, 2], cols[c, 2], wb, wc)
+                        a32 = colour_dda(ac, da, day, ox, oy, early, cok, cols[a, 3],
+                                         cols[b, 3], cols[c, 3], wb, wc)
+                    # row views of the banks the variant uses
+                    cr0 = cb0[y] if color else cr0_dummy
+                    cr1 = cb1[y] if (color and dual) else cr1_dummy
+                    zr = zb[y] if ztest else zr_dummy
+                    sr = sb[y] if stencil else sr_dummy
+                    # the span loop (the span processor)
                     for k in range(nv):
                         x = lo + k
                         # truncated to int32 before the clamp (32-bit vector
@@ -532,44 +630,17 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         zf += dz
                         w = word
                         if interp:
-                            ri = min(max(sra32(r32, CFRAC), np.int32(0)), np.int32(cmax))
+                            w = gouraud_word(cmode, cmax, r32, g32, b32, a32)
                             r32 = add32(r32, dr32)
-                            if cmode:
-                                w = ri & 0xFFF
-                            else:
-                                gi = min(max(sra32(g32, CFRAC), np.int32(0)), np.int32(255))
-                                bi = min(max(sra32(b32, CFRAC), np.int32(0)), np.int32(255))
-                                ai = min(max(sra32(a32, CFRAC), np.int32(0)), np.int32(255))
+                            if not cmode:
                                 g32 = add32(g32, dg32)
                                 b32 = add32(b32, db32)
                                 a32 = add32(a32, da32)
-                                w = (ai << 24) | (bi << 16) | (gi << 8) | ri
                         if texture:
-                            w0 = (e0 + o0) * ia
-                            w1 = (e1 + o1) * ia
-                            w2 = (e2 + o2) * ia
-                            e0 += A0 << SHIFT
-                            e1 += A1 << SHIFT
-                            e2 += A2 << SHIFT
-                            if gouraud:
-                                r = w0 * cols[a, 0] + w1 * cols[b, 0] + w2 * cols[c, 0]
-                                g = w0 * cols[a, 1] + w1 * cols[b, 1] + w2 * cols[c, 1]
-                                bb = w0 * cols[a, 2] + w1 * cols[b, 2] + w2 * cols[c, 2]
-                                al = w0 * cols[a, 3] + w1 * cols[b, 3] + w2 * cols[c, 3]
-                            else:
-                                r = cols[pv, 0]
-                                g = cols[pv, 1]
-                                bb = cols[pv, 2]
-                                al = cols[pv, 3]
-                            iw = w0 * TC[a, 2] + w1 * TC[b, 2] + w2 * TC[c, 2]
-                            ts = (w0 * TC[a, 0] + w1 * TC[b, 0] + w2 * TC[c, 0]) / iw
-                            tt = (w0 * TC[a, 1] + w1 * TC[b, 1] + w2 * TC[c, 1]) / iw
-                            tr, tg, tb, ta = _tex.sample(texels, tinfo, tlevel, tbil,
-                                                         ts, tt, tp[0] != 0, tp[1] != 0)
-                            r, g, bb, al = _tex.environment(int(tp[2]), r, g, bb, al,
-                                                            tr, tg, tb, ta,
-                                                            tp[3], tp[4], tp[5])
-                            w = fragment.colour_word(cmode, r, g, bb, al)
+                            sk = k << SHIFT     # (no padding: x = xl + k)
+                            w = texel_word(cmode, gouraud, (e0 + A0 * sk + o0) * ia,
+                                           (e1 + A1 * sk + o1) * ia, (e2 + A2 * sk + o2) * ia,
+                                           cols, a, b, c, prov[i], TC, tex, tlevel, tbil)
                         kk = np.int32(k)        # (an int32 test: 8 lanes)
                         patbit = np.int32((kk >= kin0) & (kk <= kin1)) if pad else np.int32(1)
                         if pattern:
