@@ -19,6 +19,11 @@ _INSIDE_OK = set()
 #: answers its queries without a display; takes effect in a real window) or
 #: NOT_EMULATED (raises GLError saying why).  docs/api.md is generated from it.
 IMPLEMENTED, HEADLESS, NOT_EMULATED = "implemented", "headless", "not emulated"
+#: the default of a parameter that must be given (the explicit per-vertex
+#: calls: ``def v3f(v=NOT_GIVEN, *more)``): a missing or extra argument
+#: then reaches the checked path, which reports the arity as a GLError
+NOT_GIVEN = object()
+
 API = {}
 
 #: calls run at once even while an object is open (never recorded):

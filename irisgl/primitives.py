@@ -14,8 +14,8 @@ from vgx_emulator.geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QST
 from vgx_emulator.geometry.batch import EV_BYTE, EV_CPACK, EV_NORMAL, EV_UNIT
 
 from . import constants as K
-from ._current import (boolean, glcall, integer, machine, num, raise_or_report, token, ulong,
-                       vec, win)
+from ._current import (NOT_GIVEN, boolean, glcall, integer, machine, num, raise_or_report,
+                       token, ulong, vec, win)
 
 __all__ = []
 
@@ -38,7 +38,7 @@ def _export(f):
 # call takes its checked path: the glcall-wrapped validator below, which
 # records it, or raises the GLError (reported in lenient mode).
 
-_NO = object()          # "argument not given": the checked path reports the arity
+_NO = NOT_GIVEN         # "argument not given": the checked path reports the arity
 
 
 def _checked_call(name, args, more):
@@ -67,6 +67,8 @@ _CHECKED = {f"v{n}{t}": _vertex_checker(f"v{n}{t}", n) for n in (2, 3, 4) for t 
 def v2s(v=_NO, *more):
     """v2s(3G): a vertex of 2 shorts (z = 0, w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y = v
         machine.V((float(x), float(y), 0.0, 1.0))
     except Exception:
@@ -77,6 +79,8 @@ def v2s(v=_NO, *more):
 def v2i(v=_NO, *more):
     """v2i(3G): a vertex of 2 longs (z = 0, w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y = v
         machine.V((float(x), float(y), 0.0, 1.0))
     except Exception:
@@ -87,6 +91,8 @@ def v2i(v=_NO, *more):
 def v2f(v=_NO, *more):
     """v2f(3G): a vertex of 2 floats (z = 0, w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y = v
         machine.V((float(x), float(y), 0.0, 1.0))
     except Exception:
@@ -97,6 +103,8 @@ def v2f(v=_NO, *more):
 def v2d(v=_NO, *more):
     """v2d(3G): a vertex of 2 doubles (z = 0, w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y = v
         machine.V((float(x), float(y), 0.0, 1.0))
     except Exception:
@@ -107,6 +115,8 @@ def v2d(v=_NO, *more):
 def v3s(v=_NO, *more):
     """v3s(3G): a vertex of 3 shorts (w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z = v
         machine.V((float(x), float(y), float(z), 1.0))
     except Exception:
@@ -117,6 +127,8 @@ def v3s(v=_NO, *more):
 def v3i(v=_NO, *more):
     """v3i(3G): a vertex of 3 longs (w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z = v
         machine.V((float(x), float(y), float(z), 1.0))
     except Exception:
@@ -127,6 +139,8 @@ def v3i(v=_NO, *more):
 def v3f(v=_NO, *more):
     """v3f(3G): a vertex of 3 floats (w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z = v
         machine.V((float(x), float(y), float(z), 1.0))
     except Exception:
@@ -137,6 +151,8 @@ def v3f(v=_NO, *more):
 def v3d(v=_NO, *more):
     """v3d(3G): a vertex of 3 doubles (w = 1), inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z = v
         machine.V((float(x), float(y), float(z), 1.0))
     except Exception:
@@ -147,6 +163,8 @@ def v3d(v=_NO, *more):
 def v4s(v=_NO, *more):
     """v4s(3G): a vertex of 4 shorts, inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z, w = v
         machine.V((float(x), float(y), float(z), float(w)))
     except Exception:
@@ -157,6 +175,8 @@ def v4s(v=_NO, *more):
 def v4i(v=_NO, *more):
     """v4i(3G): a vertex of 4 longs, inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z, w = v
         machine.V((float(x), float(y), float(z), float(w)))
     except Exception:
@@ -167,6 +187,8 @@ def v4i(v=_NO, *more):
 def v4f(v=_NO, *more):
     """v4f(3G): a vertex of 4 floats, inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z, w = v
         machine.V((float(x), float(y), float(z), float(w)))
     except Exception:
@@ -177,6 +199,8 @@ def v4f(v=_NO, *more):
 def v4d(v=_NO, *more):
     """v4d(3G): a vertex of 4 doubles, inside bgn*/end*."""
     try:
+        if more:
+            raise TypeError
         x, y, z, w = v
         machine.V((float(x), float(y), float(z), float(w)))
     except Exception:
@@ -196,6 +220,8 @@ _CHECKED["n3f"] = glcall(_n3f_checked, inside=True)
 def n3f(n=_NO, *more):
     """n3f(3G): the current normal, for the following vertices."""
     try:
+        if more:
+            raise TypeError
         x, y, z = n
         m = machine
         m.E.extend((len(m.P), EV_NORMAL, float(x), float(y), float(z), 0.0))
@@ -242,6 +268,8 @@ for _n in (3, 4):
 def c3f(c=_NO, *more):
     """c3f(3G): RGB colour, components 0.0-1.0 (clamped); alpha := 255."""
     try:
+        if more:
+            raise TypeError
         r, g, b = c
         m = machine
         m.EC.extend((len(m.P), EV_UNIT, float(r), float(g), float(b), 1.0))
@@ -253,6 +281,8 @@ def c3f(c=_NO, *more):
 def c3i(c=_NO, *more):
     """c3i(3G): RGB colour, components 0-255 (clamped); alpha := 255."""
     try:
+        if more:
+            raise TypeError
         r, g, b = c
         m = machine
         m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), 255.0))
@@ -264,6 +294,8 @@ def c3i(c=_NO, *more):
 def c3s(c=_NO, *more):
     """c3s(3G): RGB colour, components 0-255 (clamped); alpha := 255."""
     try:
+        if more:
+            raise TypeError
         r, g, b = c
         m = machine
         m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), 255.0))
@@ -275,6 +307,8 @@ def c3s(c=_NO, *more):
 def c4f(c=_NO, *more):
     """c4f(3G): RGBA colour, components 0.0-1.0 (clamped)."""
     try:
+        if more:
+            raise TypeError
         r, g, b, a = c
         m = machine
         m.EC.extend((len(m.P), EV_UNIT, float(r), float(g), float(b), float(a)))
@@ -286,6 +320,8 @@ def c4f(c=_NO, *more):
 def c4i(c=_NO, *more):
     """c4i(3G): RGBA colour, components 0-255 (clamped)."""
     try:
+        if more:
+            raise TypeError
         r, g, b, a = c
         m = machine
         m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), float(a)))
@@ -297,6 +333,8 @@ def c4i(c=_NO, *more):
 def c4s(c=_NO, *more):
     """c4s(3G): RGBA colour, components 0-255 (clamped)."""
     try:
+        if more:
+            raise TypeError
         r, g, b, a = c
         m = machine
         m.EC.extend((len(m.P), EV_BYTE, float(r), float(g), float(b), float(a)))

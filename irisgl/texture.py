@@ -16,12 +16,12 @@ from vgx_emulator.errors import fail
 from vgx_emulator.geometry.batch import EV_TEX
 
 from . import constants as K
-from ._current import glcall, integer, machine, num, token, vec, win
+from ._current import NOT_GIVEN, glcall, integer, machine, num, token, vec, win
 
 __all__ = ["texdef2d", "tevdef", "tevbind", "texbind", "texgen", "scrsubdivide"] + \
     [f"t{n}{t}" for n in (2, 3, 4) for t in "sifd"]
 
-_NO = object()          # "argument not given": the checked path reports the arity
+_NO = NOT_GIVEN         # "argument not given": the checked path reports the arity
 
 
 def _props(call, np_count, props, table):
@@ -184,6 +184,8 @@ def _t_slow(name, v, more):
 def t2s(v=_NO, *more):
     """t2s(3G): texture coordinate of 2 shorts for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
@@ -194,6 +196,8 @@ def t2s(v=_NO, *more):
 def t2i(v=_NO, *more):
     """t2i(3G): texture coordinate of 2 longs for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
@@ -204,6 +208,8 @@ def t2i(v=_NO, *more):
 def t2f(v=_NO, *more):
     """t2f(3G): texture coordinate of 2 floats for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
@@ -214,6 +220,8 @@ def t2f(v=_NO, *more):
 def t2d(v=_NO, *more):
     """t2d(3G): texture coordinate of 2 doubles for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), 0.0, 1.0))
@@ -224,6 +232,8 @@ def t2d(v=_NO, *more):
 def t3s(v=_NO, *more):
     """t3s(3G): texture coordinate of 3 shorts for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
@@ -234,6 +244,8 @@ def t3s(v=_NO, *more):
 def t3i(v=_NO, *more):
     """t3i(3G): texture coordinate of 3 longs for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
@@ -244,6 +256,8 @@ def t3i(v=_NO, *more):
 def t3f(v=_NO, *more):
     """t3f(3G): texture coordinate of 3 floats for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
@@ -254,6 +268,8 @@ def t3f(v=_NO, *more):
 def t3d(v=_NO, *more):
     """t3d(3G): texture coordinate of 3 doubles for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), 1.0))
@@ -264,6 +280,8 @@ def t3d(v=_NO, *more):
 def t4s(v=_NO, *more):
     """t4s(3G): texture coordinate of 4 shorts for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r, q = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))
@@ -274,6 +292,8 @@ def t4s(v=_NO, *more):
 def t4i(v=_NO, *more):
     """t4i(3G): texture coordinate of 4 longs for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r, q = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))
@@ -284,6 +304,8 @@ def t4i(v=_NO, *more):
 def t4f(v=_NO, *more):
     """t4f(3G): texture coordinate of 4 floats for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r, q = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))
@@ -294,6 +316,8 @@ def t4f(v=_NO, *more):
 def t4d(v=_NO, *more):
     """t4d(3G): texture coordinate of 4 doubles for the following vertices."""
     try:
+        if more:
+            raise TypeError
         s, t, r, q = v
         m = machine
         m.E.extend((len(m.P), EV_TEX, float(s), float(t), float(r), float(q)))

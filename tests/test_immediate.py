@@ -212,6 +212,33 @@ def test_a_bad_call_is_a_glerror_and_changes_nothing(open_window, call, args, me
     assert _state(w) == before
 
 
+def _one_argument_calls():
+    """Every per-vertex call that takes one array argument (v*, n3f, c3*/c4*, t*)."""
+    import irisgl
+    names = [f"v{n}{t}" for n in (2, 3, 4) for t in "sifd"] + ["n3f"] + \
+        [f"c{n}{t}" for n in (3, 4) for t in "fis"] + [f"t{n}{t}" for n in (2, 3, 4) for t in "sifd"]
+    size = {"v": None, "n": 3, "c": None, "t": None}
+    out = []
+    for name in names:
+        k = int(name[1]) if size[name[0]] is None else size[name[0]]
+        out.append((getattr(irisgl, name), [1] * k))
+    return out
+
+
+@pytest.mark.parametrize("call, arg", _one_argument_calls(), ids=lambda c: getattr(c, "__name__", ""))
+def test_an_extra_argument_inside_bgn_end_is_a_glerror(open_window, call, arg):
+    """Inside bgn*/end* (where the fast path runs) a second argument is refused
+    like any other wrong arity: GLError naming the call, nothing recorded."""
+    w = open_window(W, H)
+    bgnpolygon()
+    v2f((1, 1))
+    before = _state(w)
+    with pytest.raises(GLError, match=rf"^{call.__name__}: 2 arguments given; the call is "
+                                      rf"{call.__name__}\("):
+        call(arg, 5)
+    assert _state(w) == before
+
+
 def test_vertex_outside_bgn_end_and_before_winopen():
     with pytest.raises(GLError, match=r"^v3f: no window is open"):
         v3f((1, 2, 3))

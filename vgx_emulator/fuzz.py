@@ -44,6 +44,7 @@ import inspect
 import json
 import math
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -443,7 +444,8 @@ _ARRAYS = {"v", "parray", "iarray", "props", "m", "points", "ctlarray", "knot_li
 def _neutral(p):
     """An argument likely to be accepted for parameter ``p``: its default,
     a short array for array names, a string for string names, else 1."""
-    if p.default is not p.empty:
+    from irisgl._current import NOT_GIVEN
+    if p.default is not p.empty and p.default is not NOT_GIVEN:
         return p.default
     if p.name in ("name", "str", "string", "text"):
         return "x"
@@ -502,6 +504,10 @@ def fingerprint(obj):
     return h.hexdigest()
 
 
+#: the calls legal inside bgn*/end*, tried there too (their fast path)
+INSIDE_BGN = re.compile(r"^(v[234][sifd]|n3f|c[34][sif]|cpack|RGBcolor|color|t[234][sifd])$")
+
+
 class Misuser:
     """Every public call given wrong arguments (module docstring)."""
 
@@ -515,7 +521,10 @@ class Misuser:
         self.findings = []
         self.table = {}
 
-    def _scene(self):
+    def _scene(self, inside=False):
+        """The neutral state of a trial: a window with a z-buffer, stencil and
+        double buffer; ``inside``: with a bgnline open and a vertex sent (the
+        per-vertex calls' fast path runs only there)."""
         gl, m = self.gl, self.machine
         m.reset()
         gl.prefsize(16, 12)
@@ -536,6 +545,9 @@ class Misuser:
         cursor._cursor()
         curves._state()
         nurbs._state(m.current)
+        if inside:
+            gl.bgnline()
+            gl.v2f((0.0, 0.0))
 
     def _probe(self):
         """After an accepted trial: the state it left must still draw."""
@@ -557,9 +569,15 @@ class Misuser:
         except (TypeError, ValueError):
             params = []
         fixed = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
-        var = any(p.kind == p.VAR_POSITIONAL for p in params)
+        # ``*more`` of the explicit per-vertex calls only catches a wrong
+        # arity: such a call takes exactly its fixed parameters, which must
+        # all be given (their default is NOT_GIVEN)
+        from irisgl._current import NOT_GIVEN
+        var = any(p.kind == p.VAR_POSITIONAL and p.name != "more" for p in params)
         base = [_neutral(p) for p in fixed]
-        required = sum(p.default is p.empty for p in fixed)
+        if INSIDE_BGN.match(name) and name[1].isdigit():     # v3f(v): a vector of 3
+            base = [[0.5] * int(name[1]) if isinstance(b, list) else b for b in base]
+        required = sum(p.default is p.empty or p.default is NOT_GIVEN for p in fixed)
         trials = []
         if not var:
             trials.append(("arity", base + [1]))
@@ -589,50 +607,55 @@ class Misuser:
                 f = getattr(gl, name)
                 trials = self._trials(name, f)
                 row = Counter()
-                self._scene()
-                for where, args in trials:
-                    before = fingerprint(self.machine)
-                    outcome = "accepted"
-                    try:
-                        signal.alarm(20)
-                        f(*args)
-                    except GLError as e:
-                        outcome = "refused"
-                        if not str(e).startswith(name + ":"):
-                            self._find(name, where, args, f"GLError not naming the call: {e}")
-                        elif fingerprint(self.machine) != before:
-                            self._find(name, where, args, f"GLError, but the state changed: {e}")
-                            outcome = "changed"
-                    except SystemExit:
-                        outcome = "exit"      # qread on an empty queue (QueueExhausted)
-                    except BaseException as e:
-                        outcome = "crash"
-                        self._find(name, where, args,
-                                   f"{type(e).__name__}: {e} "
-                                   f"{traceback.format_exc(limit=-2).splitlines()[-3:]}")
-                    finally:
-                        signal.alarm(0)
-                    if outcome == "accepted":
-                        if where == "arity":
-                            self._find(name, where, args, "wrong number of arguments accepted")
-                        elif any(a is g for a in args for g in GARBAGE[1:3]) and \
-                                where.split("[")[0] not in TAKES_OBJECTS and \
-                                name not in ANSWER_MINUS_ONE:
-                            self._find(name, where, args, "garbage argument accepted")
+                for inside in ((False, True) if INSIDE_BGN.match(name) else (False,)):
+                    self._scene(inside)
+                    for where, args in trials:
+                        tag = "inside bgnline: " + where if inside else where
+                        before = fingerprint(self.machine)
+                        outcome = "accepted"
                         try:
                             signal.alarm(20)
-                            self._probe()
-                        except GLError:
-                            pass
+                            f(*args)
+                        except GLError as e:
+                            outcome = "refused"
+                            if not str(e).startswith(name + ":"):
+                                self._find(name, tag, args,
+                                           f"GLError not naming the call: {e}")
+                            elif fingerprint(self.machine) != before:
+                                self._find(name, tag, args,
+                                           f"GLError, but the state changed: {e}")
+                                outcome = "changed"
+                        except SystemExit:
+                            outcome = "exit"      # qread on an empty queue (QueueExhausted)
                         except BaseException as e:
                             outcome = "crash"
-                            self._find(name, where, args, f"drawing after it: "
-                                       f"{type(e).__name__}: {e}")
+                            self._find(name, tag, args,
+                                       f"{type(e).__name__}: {e} "
+                                       f"{traceback.format_exc(limit=-2).splitlines()[-3:]}")
                         finally:
                             signal.alarm(0)
-                    if outcome != "refused":
-                        self._scene()
-                    row[outcome] += 1
+                        if outcome == "accepted":
+                            if where == "arity":
+                                self._find(name, tag, args,
+                                           "wrong number of arguments accepted")
+                            elif any(a is g for a in args for g in GARBAGE[1:3]) and \
+                                    where.split("[")[0] not in TAKES_OBJECTS and \
+                                    name not in ANSWER_MINUS_ONE:
+                                self._find(name, tag, args, "garbage argument accepted")
+                            try:
+                                signal.alarm(20)
+                                self._probe()
+                            except GLError:
+                                pass
+                            except BaseException as e:
+                                outcome = "crash"
+                                self._find(name, tag, args, f"drawing after it: "
+                                           f"{type(e).__name__}: {e}")
+                            finally:
+                                signal.alarm(0)
+                        if outcome != "refused":
+                            self._scene(inside)
+                        row[outcome] += 1
                 self.table[name] = dict(row)
                 totals.update(row)
         return dict(calls=len(self.calls), trials=sum(totals.values()), outcomes=dict(totals),
