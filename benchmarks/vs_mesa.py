@@ -15,6 +15,9 @@ Workloads:
                   above the horizon, so the ground is lit.  Each side runs its
                   own lighting (IRIS lmdef -> GL fixed function).
   spheres-depth   the same, depth only (zclear; wmpack(0) / glColorMask 0).
+  spheres-lmcolor the same, every vertex with its own colour through c4f under
+                  lmcolor(LMC_AD), as 1991 programs coloured lit surfaces (GL:
+                  GL_COLOR_MATERIAL with GL_AMBIENT_AND_DIFFUSE, a colour array).
   heidmann        programs/heidmann_shadow_volumes.py figure 5b (eight objects,
                   four coloured local lights): ambient pass, then per light
                   sclear(MYZERO), the shadow-volume faces with ST_INCR/ST_DECR
@@ -102,11 +105,11 @@ for _p in (str(ROOT), str(ROOT / "benchmarks")):
         sys.path.insert(0, _p)
 
 from irisgl import (AMBIENT, DEFLIGHT, DEFLMODEL, DEFMATERIAL, DIFFUSE,  # noqa: E402
-                    GD_BITS_STENCIL, GD_ZMAX, LIGHT0, LMNULL, LMODEL, MATERIAL, MPROJECTION,
+                    GD_BITS_STENCIL, GD_ZMAX, LIGHT0, LMC_AD, LMNULL, LMODEL, MATERIAL, MPROJECTION,
                     MVIEWING, POSITION, SF_ALWAYS, SPECULAR, SRC_AUTO, SRC_ZBUFFER,
                     ST_INCR, ST_KEEP, TRUE, RGBmode, acsize, bgnpolygon, bgnqstrip,
-                    callobj, closeobj, cpack, czclear, doublebuffer, endpolygon, endqstrip,
-                    gconfig, genobj, getgdesc, getmatrix, lmbind, lmdef, lookat, lrectread,
+                    c4f, callobj, closeobj, cpack, czclear, doublebuffer, endpolygon, endqstrip,
+                    gconfig, genobj, getgdesc, getmatrix, lmbind, lmcolor, lmdef, lookat, lrectread,
                     makeobj, mmode, n3f, ortho, perspective, popmatrix, prefsize,
                     pushmatrix, readsource, sclear, stencil, stensize, subpixel,
                     swapbuffers, v3f, winopen, wmpack, zbuffer, zclear, zwritemask)
@@ -116,7 +119,7 @@ import programs.heidmann_shadow_volumes as hv  # noqa: E402
 import vgx_emulator  # noqa: E402
 from vgx_emulator.display.png import write_png  # noqa: E402
 
-WORKLOADS = ["spheres", "spheres-depth", "heidmann", "heidmann-immediate", "heidmann-1991",
+WORKLOADS = ["spheres", "spheres-depth", "spheres-lmcolor", "heidmann", "heidmann-immediate", "heidmann-1991",
              "heidmann-1991-immediate", "heidmann-soft", "shadowmap", "fill-z", "fill-stencil",
              "cold"]
 SHADOWMAP_SIZE = 1024
@@ -285,12 +288,30 @@ def emu_matrices(view):
     return {"proj": proj, "view": mv}
 
 
-def emu_strips_object(parts):
-    """An object with lmbind(MATERIAL) + quad strips (n3f, v3f per vertex)."""
+def vertex_colours(nrm):
+    """spheres-lmcolor's per-vertex RGBA: the normal mapped to 0..1, alpha 1."""
+    c = np.ones(nrm.shape[:-1] + (4,))
+    c[..., :3] = 0.5 + 0.5 * nrm
+    return c
+
+
+def emu_strips_object(parts, lmc=False):
+    """An object with lmbind(MATERIAL) + quad strips (n3f, v3f per vertex);
+    ``lmc``: lmcolor(LMC_AD) after each bind and c4f before each vertex."""
     obj = genobj()
     makeobj(obj)
     for mat, pos, nrm in parts:
         lmbind(MATERIAL, mat)
+        if lmc:
+            lmcolor(LMC_AD)
+            for ps, ns, cs in zip(pos.tolist(), nrm.tolist(), vertex_colours(nrm).tolist()):
+                bgnqstrip()
+                for p, n, c in zip(ps, ns, cs):
+                    c4f(c)
+                    n3f(n)
+                    v3f(p)
+                endqstrip()
+            continue
         for ps, ns in zip(pos.tolist(), nrm.tolist()):
             bgnqstrip()
             for p, n in zip(ps, ns):
@@ -305,8 +326,9 @@ def spheres_view():
     lookat(0.0, 3.0, 12.0, 0.0, 0.0, 0.0, 0)      # four_spheres.draw_scene's
 
 
-def emu_spheres(w, h, depth_only=False):
-    """spheres / spheres-depth: four_spheres' lighting, view and projection."""
+def emu_spheres(w, h, depth_only=False, lmc=False):
+    """spheres / spheres-depth / spheres-lmcolor: four_spheres' lighting,
+    view and projection."""
     emu_window(w, h)
     mmode(MVIEWING)
     perspective(400, w / h, 1.0, 50.0)
@@ -315,7 +337,7 @@ def emu_spheres(w, h, depth_only=False):
     lmdef(DEFMATERIAL, GROUND_MAT, 0, [AMBIENT, 0.15, 0.15, 0.15, DIFFUSE, 0.55, 0.6, 0.5,
                                        SPECULAR, 0.0, 0.0, 0.0, LMNULL])
     lmbind(LMODEL, fs.MODEL)
-    obj = emu_strips_object(spheres_scene())
+    obj = emu_strips_object(spheres_scene(), lmc)
     if depth_only:
         wmpack(0)
     zmax = getgdesc(GD_ZMAX)
@@ -608,9 +630,9 @@ def gl_list(g, build):
     return lst
 
 
-def gl_draw_arrays(g, mode, pos, nrm=None, words=None):
+def gl_draw_arrays(g, mode, pos, nrm=None, words=None, rgba=None):
     """Vertex arrays: all of pos ((P, V, 3)) in one call for GL_QUADS, else
-    one primitive (strip) per row."""
+    one primitive (strip) per row; colours as packed words or float RGBA."""
     p = np.ascontiguousarray(pos.reshape(-1, 3), np.float32)
     g.glEnableClientState(g.GL_VERTEX_ARRAY)
     g.glVertexPointer(3, g.GL_FLOAT, 0, p)
@@ -622,6 +644,10 @@ def gl_draw_arrays(g, mode, pos, nrm=None, words=None):
         c = np.ascontiguousarray(words.reshape(-1), np.uint32).view(np.uint8)
         g.glEnableClientState(g.GL_COLOR_ARRAY)
         g.glColorPointer(4, g.GL_UNSIGNED_BYTE, 0, c)      # 0xAABBGGRR = R, G, B, A bytes
+    if rgba is not None:
+        cf = np.ascontiguousarray(rgba.reshape(-1, 4), np.float32)
+        g.glEnableClientState(g.GL_COLOR_ARRAY)
+        g.glColorPointer(4, g.GL_FLOAT, 0, cf)
     nv = pos.shape[1]
     if mode == g.GL_QUADS:
         g.glDrawArrays(mode, 0, len(p))
@@ -653,7 +679,7 @@ class GLSide(Side):
         super().__init__(frame, capture, close)
 
 
-def gl_spheres(mesa, w, h, emu, depth_only=False):
+def gl_spheres(mesa, w, h, emu, depth_only=False, lmc=False):
     """The spheres scene: four_spheres' lighting read from the emulator's
     lmdef tables, the same strips in one list, the same matrices."""
     g = mesa.GL
@@ -665,11 +691,17 @@ def gl_spheres(mesa, w, h, emu, depth_only=False):
     def build():
         for mat, pos, nrm in spheres_scene():
             gl_material(g, mats[mat])
-            gl_draw_arrays(g, g.GL_QUAD_STRIP, pos, nrm)
+            gl_draw_arrays(g, g.GL_QUAD_STRIP, pos, nrm,
+                           rgba=vertex_colours(nrm) if lmc else None)
 
     lst = gl_list(g, build)
     gl_load(g, emu.info["proj"])
     gl_light_model(g, model)
+    if lmc:
+        g.glColorMaterial(g.GL_FRONT_AND_BACK, g.GL_AMBIENT_AND_DIFFUSE)
+        g.glEnable(g.GL_COLOR_MATERIAL)
+    else:                   # (the context is shared by the workloads)
+        g.glDisable(g.GL_COLOR_MATERIAL)
     g.glEnable(g.GL_DEPTH_TEST)
     sun = d[DEFLIGHT][fs.SUN]
     view = np.ascontiguousarray(emu.info["view"], np.float32)
@@ -881,10 +913,10 @@ def gl_fill(mesa, w, h, emu, use_stencil):
 def build_pair(name, mesa, w, h):
     """Both sides of a workload, emulator first (the GL side reads its
     matrices and lighting definitions)."""
-    if name in ("spheres", "spheres-depth"):
-        depth = name == "spheres-depth"
-        emu = emu_spheres(w, h, depth)
-        return emu, gl_spheres(mesa, w, h, emu, depth)
+    if name.startswith("spheres"):
+        depth, lmc = name == "spheres-depth", name == "spheres-lmcolor"
+        emu = emu_spheres(w, h, depth, lmc)
+        return emu, gl_spheres(mesa, w, h, emu, depth, lmc)
     if name.startswith("heidmann"):
         imm = name.endswith("-immediate")
         style = ("--two-pass", "--infinite") if "1991" in name else ()

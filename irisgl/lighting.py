@@ -88,7 +88,9 @@ def lmcolor(mode):
     """lmcolor(3G): where RGB colour calls go while lighting is on."""
     w = win("lmcolor")
     m = token("lmcolor", mode, _LMC, "lmcolor mode")
-    machine.state_change(w)
+    # no flush: the following vertices take a new record whose material
+    # entry holds the mode (VertexBatch.material_ref), and each vertex is
+    # lit with its own entry's mode
     st = w.st
     # a colour already sent under a material mode stays in the bound material
     # until the next material bind (docs/semantics.md §9), whatever lmcolor says next

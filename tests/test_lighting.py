@@ -984,7 +984,7 @@ def test_materials_bound_between_polygons_light_each_polygon(monkeypatch):
     for i, m in enumerate(mats):
         lmdef(DEFMATERIAL, i + 1, 0, _plist(m, MAT_DEFAULTS))
     _, lights, lm = _define(mats[0], [lt], model())
-    lmcolor(LMC_DIFFUSE)                        # (before drawing: it flushes)
+    lmcolor(LMC_DIFFUSE)
     wants = []
     for i, m in enumerate(mats):
         lmbind(MATERIAL, i + 1)
@@ -996,10 +996,58 @@ def test_materials_bound_between_polygons_light_each_polygon(monkeypatch):
         _polygon((0, 0, 1), pts=pts)
         wants.append(_expected((pts[-1][0], pts[-1][1], 0), (0, 0, 1), over, lights, lm))
     assert len(set(wants)) == 3                 # the test can tell the materials apart
-    lmcolor(LMC_COLOR)                          # (a state change: the batch is drawn)
+    gflush()
     assert len(calls) == 1
     for i, want in enumerate(wants):
         _close(_rgba(CX + 16 * i, CY), want)
+
+
+def _lmcolor_polygons(flush_between):
+    """Five polygons, each under another lmcolor mode with a colour sent
+    before its vertices (LMC_AD, LMC_DIFFUSE, LMC_COLOR with the normal last,
+    LMC_COLOR with the colour last, LMC_EMISSION), the mode set between
+    primitives; the pixels of each."""
+    _window(80, 16)
+    mat = _props(MAT_DEFAULTS, over={DIFFUSE: (0.3, 0.3, 0.3), AMBIENT: (0.1, 0.1, 0.1)})
+    lmdef(DEFMATERIAL, 1, 0, _plist(mat, MAT_DEFAULTS))
+    _define(mat, [_props(LIGHT_DEFAULTS, over={POSITION: (0.3, 0.4, 1.0, 0.0)})], model())
+    lmbind(MATERIAL, 1)
+    for i, (mode, rgb, colour_last) in enumerate((
+            (LMC_AD, (0.5, 0.2, 0.1), False), (LMC_DIFFUSE, (0.1, 0.4, 0.3), False),
+            (LMC_COLOR, (0.2, 0.3, 0.5), False), (LMC_COLOR, (0.6, 0.4, 0.2), True),
+            (LMC_EMISSION, (0.3, 0.0, 0.4), False))):
+        lmcolor(mode)
+        c3f(rgb)
+        bgnpolygon()
+        for x, y in SQUARE:
+            if colour_last:
+                n3f((0, 0, 1))
+                c3f(rgb)
+            else:
+                n3f((0, 0, 1))
+            v3f((x + 16 * i, y, 0))
+        endpolygon()
+        if flush_between:
+            gflush()
+    return [_rgba(CX + 16 * i, CY) for i in range(5)]
+
+
+def test_lmcolor_between_polygons_needs_no_flush(monkeypatch):
+    """lmcolor(3G) between primitives does not end the batch: each vertex is
+    lit under the mode in force when it was sent (its material entry holds
+    the mode), so one batch draws what a flush after every polygon draws,
+    and each mode's pixel is what its redirection gives."""
+    calls = _count_batches(monkeypatch)
+    one = _lmcolor_polygons(False)
+    assert len(calls) == 1
+    calls.clear()
+    flushed = _lmcolor_polygons(True)
+    assert len(calls) == 5
+    assert one == flushed
+    # LMC_COLOR with the normal last lights with the material, which keeps
+    # the LMC_DIFFUSE colour until the next bind (docs/semantics.md §9)
+    assert one[2] == one[1] and len(set(one)) == 4
+    assert one[3] == (153, 102, 51, 255)            # LMC_COLOR, colour last: unlit
 
 
 def test_backmaterial_bound_between_polygons():

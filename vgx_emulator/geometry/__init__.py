@@ -94,10 +94,10 @@ def _transform(pos, attrs, xforms):
 
 def _materials(st, defs, mats):
     """Front and back material dicts of each (material, backmaterial,
-    lmcolor overrides) state the batch's vertices refer to."""
+    lmcolor overrides, lmcolor mode) state the batch's vertices refer to."""
     mdefs = defs[lighting.DEFMATERIAL]
     front, back = [], []
-    for m, bm, override in mats:
+    for m, bm, override, _ in mats:
         mat = mdefs.get(m) or mdefs[st.material]
         if override:
             mat = dict(mat)
@@ -109,14 +109,17 @@ def _materials(st, defs, mats):
 
 def _light(st, defs, eye4, attrs, xf, xforms, mats):
     """Front and back colours of every vertex (docs/semantics.md §9).  Each vertex is
-    lit with the material bound when it was sent (attribute column 13)."""
+    lit with the material and lmcolor mode in force when it was sent
+    (attribute column 13: its entry in ``mats``).  Under LMC_COLOR a vertex
+    whose last call was a colour, not a normal, takes that colour unlit."""
     col = attrs[:, 3:7].copy()
     if not lighting_active(st, defs):
         return col, None
     flags = attrs[:, 7].astype(np.int64)
-    lmcolor = st.lmcolor
-    lit = np.ones(len(col), bool) if lmcolor != lighting.LMC_COLOR else \
-        (flags & LAST_WAS_NORMAL) != 0
+    modes = np.array([m[3] for m in mats] or [st.lmcolor], np.int64)
+    vmode = modes[attrs[:, 13].astype(np.int64)] if len(modes) > 1 else \
+        np.broadcast_to(modes[0], len(col))
+    lit = (vmode != lighting.LMC_COLOR) | ((flags & LAST_WAS_NORMAL) != 0)
     if not lit.any():
         return col, None
     idx = np.nonzero(lit)[0]
@@ -140,11 +143,11 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
         return col, None
     geom = (idx, eye4, attrs, np.ascontiguousarray(np.stack([m for m, _ in nm])),
             np.array([st.nmode == 1 or not o for _, o in nm]))
-    lighting.shade_rgb(geom, front, lights, model, col, lmcolor)
+    lighting.shade_rgb(geom, front, lights, model, col, modes)
     if model[lighting.TWOSIDE][0] == 0.0:
         return col, None
     back = attrs[:, 3:7].copy()
-    lighting.shade_rgb(geom, back_mats, lights, model, back, lmcolor, sign=-1.0)
+    lighting.shade_rgb(geom, back_mats, lights, model, back, modes, sign=-1.0)
     return col, back
 
 

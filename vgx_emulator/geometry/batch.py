@@ -182,7 +182,7 @@ class VertexBatch:
         self.vblocks = []           # earlier vertices: [(pos (n, 4), records (n, RECORD))]
         self.vbase = 0              # vertices in vblocks
         self.xforms = []
-        self.mats = []              # (material, backmaterial, lmcolor overrides) in force
+        self.mats = []              # (material, backmaterial, lmcolor overrides, lmcolor mode)
         self.prims = []             # flat kind, start, count, concave of immediate primitives
         self.blocks = []            # earlier primitives as (P, 4) int64 arrays, in order
         self.swaps = []             # global vertex numbers with a swaptmesh before them
@@ -221,13 +221,14 @@ class VertexBatch:
         return np.array(attribute_record(st, len(self.xforms) - 1, self.material_ref(st)))
 
     def material_ref(self, st):
-        """Index of the bound material state (lmbind MATERIAL/BACKMATERIAL and
-        the lmcolor overrides) in ``mats``: binding another material between
-        primitives needs no flush, the lighting stage reads it per vertex."""
+        """Index of the bound material state (lmbind MATERIAL/BACKMATERIAL,
+        the lmcolor overrides and the lmcolor mode) in ``mats``: binding
+        another material or changing lmcolor between primitives needs no
+        flush, the lighting stage reads them per vertex."""
         m = self.mats[-1] if self.mats else None
         if m is None or m[0] != st.material or m[1] != st.backmaterial or \
-                m[2] is not st.mat_override:
-            self.mats.append((st.material, st.backmaterial, st.mat_override))
+                m[2] is not st.mat_override or m[3] != st.lmcolor:
+            self.mats.append((st.material, st.backmaterial, st.mat_override, st.lmcolor))
         return len(self.mats) - 1
 
     def add_vertices(self, pos, recs):

@@ -220,7 +220,7 @@ _REDIRECT = {LMC_EMISSION: shade.R_EM, LMC_AMBIENT: shade.R_AM,
              LMC_AD: shade.R_AM | shade.R_DM | shade.R_ALPHA}
 
 
-def shade_rgb(geom, mats, lights, model, out, lmcolor=LMC_COLOR, sign=1.0):
+def shade_rgb(geom, mats, lights, model, out, lmcolor=(LMC_COLOR,), sign=1.0):
     """The lighting equation for the vertices ``idx``: their (N, 4) colours
     in 0..255 are written into ``out`` rows idx.
 
@@ -229,13 +229,17 @@ def shade_rgb(geom, mats, lights, model, out, lmcolor=LMC_COLOR, sign=1.0):
     material index into mats: batch.py), normal matrices (X, 3, 3),
     renormalise (X,) bool); mats: material property dicts; lights:
     [(props, LightBinding)]; model: light-model property dict.  A colour
-    sent since the bind (COLOUR_SINCE_BIND) is redirected by ``lmcolor``;
+    sent since the bind (COLOUR_SINCE_BIND) is redirected by ``lmcolor``,
+    the lmcolor mode of each entry of mats (a vertex's material index);
     sign -1 lights -N (TWOSIDE back faces).  One numba loop
     (geometry/shade.py).
     """
     idx, eye4, recs, nmats, renorm = geom
+    redirect = np.array([_REDIRECT.get(int(m), 0) for m in lmcolor], np.int64)
+    if len(redirect) < len(mats):
+        redirect = np.resize(redirect, len(mats))
     shade.light_vertices(idx, eye4, recs, nmats, renorm, _material_table(mats),
-                         COLOUR_SINCE_BIND, _REDIRECT.get(lmcolor, 0),
+                         COLOUR_SINCE_BIND, redirect,
                          _light_table(lights), _model_row(model), float(sign), out)
 
 

@@ -13,9 +13,10 @@ in registers (0.2 ms).  Tables are built once per batch by
 - model ``lm`` (7): AMBIENT (3), LOCALVIEWER, k0, k1, k2 (ATTENUATION,
   ATTENUATION2).
 
-``redirect`` is the lmcolor(3G) target of a vertex's colour when its
-COLOUR_SINCE_BIND flag is set: bit 0 emission, 1 ambient, 2 diffuse,
-3 specular, 4 alpha (LMC_DIFFUSE and LMC_AD take the colour's alpha).
+``redirect`` (M,) is, per material row, the lmcolor(3G) target of a
+vertex's colour when its COLOUR_SINCE_BIND flag is set: bit 0 emission,
+1 ambient, 2 diffuse, 3 specular, 4 alpha (LMC_DIFFUSE and LMC_AD take
+the colour's alpha).
 """
 import math
 
@@ -60,8 +61,9 @@ def light_vertices(idx, eye4, recs, nmats, renorm, mtab, override_flag, redirect
     eye-space positions; recs: (N, RECORD) attribute records (batch.py):
     the object-space normal (0:3), transformed by nmats[transform] and
     renormalised where renorm[transform]; the colour (3:7), redirected by
-    lmcolor when the flags (7) have ``override_flag``; the transform (8) and
-    the material's row in mtab (13).  sign -1.0 lights the back (-N)."""
+    lmcolor (redirect[material row]) when the flags (7) have
+    ``override_flag``; the transform (8) and the material's row in mtab
+    (13).  sign -1.0 lights the back (-N)."""
     local_viewer = lm[3] != 0.0
     k0 = lm[4]
     k1 = lm[5]
@@ -96,26 +98,28 @@ def light_vertices(idx, eye4, recs, nmats, renorm, mtab, override_flag, redirect
         else:
             px = py = pz = 0.0
         # material, with the lmcolor redirection
-        t = mtab[int(recs[i, 13])]
+        mrow = int(recs[i, 13])
+        t = mtab[mrow]
+        redir = redirect[mrow]
         er, eg, eb = t[M_EM], t[M_EM + 1], t[M_EM + 2]
         ar, ag, ab = t[M_AM], t[M_AM + 1], t[M_AM + 2]
         dr, dg, db = t[M_DM], t[M_DM + 1], t[M_DM + 2]
         sr, sg, sb = t[M_SM], t[M_SM + 1], t[M_SM + 2]
         alpha = t[M_ALPHA]
         sh = t[M_SH]
-        if redirect != 0 and (int(recs[i, 7]) & override_flag) != 0:
+        if redir != 0 and (int(recs[i, 7]) & override_flag) != 0:
             cr = recs[i, 3] / 255.0
             cg = recs[i, 4] / 255.0
             cb = recs[i, 5] / 255.0
-            if redirect & R_EM:
+            if redir & R_EM:
                 er, eg, eb = cr, cg, cb
-            if redirect & R_AM:
+            if redir & R_AM:
                 ar, ag, ab = cr, cg, cb
-            if redirect & R_DM:
+            if redir & R_DM:
                 dr, dg, db = cr, cg, cb
-            if redirect & R_SM:
+            if redir & R_SM:
                 sr, sg, sb = cr, cg, cb
-            if redirect & R_ALPHA:
+            if redir & R_ALPHA:
                 alpha = recs[i, 6] / 255.0
         r = er + ar * lm[0]
         g = eg + ag * lm[1]
