@@ -118,6 +118,39 @@ def test_walker_reads_the_maxima(open_window, vgx, monkeypatch):
     assert (colour() != 0).any()
 
 
+def test_a_pass_that_changes_no_z_keeps_the_maxima(open_window, vgx):
+    """A pass of triangles marks the maxima stale only when it changed a
+    stored z (the walker reports it): redrawing the same triangles with
+    ZF_EQUAL or ZF_LEQUAL and z writes on keeps them (Heidmann's lit
+    passes); a triangle in front lowers z and marks them; the maxima then
+    rebuilt equal those built from scratch."""
+    from vgx_emulator.framebuffer import zmax
+    open_window(W, H)
+    ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
+    zbuffer(TRUE)
+    czclear(0, getgdesc(GD_ZMAX))
+    fb = vgx.current.fb
+    _tris(np.random.default_rng(7), 10)
+    fb.z_maxima()
+    assert fb.zmax_fresh
+    for func in (ZF_EQUAL, ZF_LEQUAL):
+        zfunction(func)
+        _tris(np.random.default_rng(7), 10)         # the same triangles again
+        z_bank()                                    # (flushes)
+        assert fb.zmax_fresh, func
+    zfunction(ZF_LESS)
+    bgnpolygon()
+    for x, y in ((0, 0), (W - 1, 0), (W - 1, H - 1)):
+        c4i((255, 255, 255, 255))
+        v3f((float(x), float(y), -0.99))
+    endpolygon()
+    z_bank()
+    assert not fb.zmax_fresh
+    fresh = zmax.empty(H, W)
+    zmax.build(fb.z, fresh)
+    np.testing.assert_array_equal(fb.z_maxima(), fresh)
+
+
 @pytest.mark.parametrize("width", [1, 5, 16, 37, 1280])
 def test_build_takes_the_maximum_of_every_segment(width):
     from vgx_emulator.framebuffer import zmax

@@ -337,10 +337,13 @@ class VGX:
                                           assembled=self.assembled)
             if st.scrbox_mode == 1:           # scrbox(3G) SB_TRACK
                 scrbox.track(st, work, vp)
-            # the maxima before _raster_setup: it marks them stale when the
-            # pass writes z, for the passes after this one
-            zmaxima = self._z_maxima(win) if work.klass == FILLED else None
-            key, planes, ip = self._raster_setup(win, work, work.klass == FILLED)
+            # the maxima before the pass; a pass of triangles marks them stale
+            # for the passes after it only when it changed a stored z (the
+            # walker reports it: a redraw with ZF_LEQUAL or ZF_EQUAL of the
+            # surfaces already in the z bank keeps them)
+            filled = work.klass == FILLED
+            zmaxima = self._z_maxima(win) if filled else None
+            key, planes, ip = self._raster_setup(win, work, filled, defer_z=filled)
             ip[fragment.P_ZMAX] = zmaxima is not None
             key = key._replace(texture=tex is not None)
             if key.gouraud and (not key.color or (work.klass == FILLED and tex is None
@@ -349,6 +352,8 @@ class VGX:
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
             scan.scan_batch(work, key, planes, ip, cull, not st.subpixel, tex, zmaxima)
+            if filled and key.zwrite and ip[fragment.P_ZCHANGED]:
+                win.fb.z_written()
             if self.trace_hook is not None:
                 self.trace_hook(self, win, "draw")
         if b.open is not None:
@@ -432,9 +437,11 @@ class VGX:
             fb.z_written()
         return out
 
-    def _raster_setup(self, win, work, filled=True):
+    def _raster_setup(self, win, work, filled=True, defer_z=False):
         """The RasterKey, banks and parameter vector of a pass
-        (raster.variants.choose)."""
+        (raster.variants.choose).  A pass that writes z marks the z maxima
+        stale, unless ``defer_z`` (the caller marks them after the pass,
+        if it changed z)."""
         st, fb = win.st, win.fb
         targets = self._targets(win)
         pat = self.patterns.get(st.pattern) if filled and st.pattern else None
@@ -442,7 +449,7 @@ class VGX:
             st, fb, targets, bits=layers.index_bits(win), pattern=pat,
             scissor=_intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1)),
             origin=win.origin, twoside=bool(work is not None and work.twoside))
-        if key.zwrite:
+        if key.zwrite and not defer_z:
             fb.z_written()
         return key, variants.banks(key, fb, targets, pat), ip
 

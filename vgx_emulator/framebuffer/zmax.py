@@ -7,7 +7,10 @@ with stencil on the fail and z-fail ops both ST_KEEP: machine._z_maxima)
 skips a span whose smallest quantized z exceeds the maxima under it: every
 fragment of it would fail, so the banks end the same.  The maxima are
 rebuilt from the z bank when a pass wants them after any z write
-(Framebuffer.z_written); writes by such a pass itself only lower z, so
+(Framebuffer.z_written); a pass of triangles that changed no stored z (the
+walker reports it in the parameter slot P_ZCHANGED: a ZF_EQUAL or
+ZF_LEQUAL redraw of what the bank holds, as multipass shadow algorithms
+do) does not count.  Writes by an eligible pass itself only lower z, so
 the maxima it uses stay upper bounds while it runs.
 """
 import numpy as np

@@ -54,7 +54,8 @@ from . import stencil as _stencil
  P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5,   # generic blend kernel reads them)
  P_ZMAX,                                     # 1: spans may be skipped against the z maxima
  P_PADSPAN,                                  # spans shorter than this run over whole vectors
- NPARAMS) = range(44)
+ P_ZCHANGED,                                 # out: the triangle walker changed a stored z
+ NPARAMS) = range(45)
 #: the slots kernels read as int32 (params): the stencil arithmetic on the
 #: 8-bit planes then runs in 32-bit vector lanes
 STENCIL_SLOTS = range(P_SREF, P_ZA + 1)

@@ -621,6 +621,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     zr = zb[y] if ztest else zr_dummy
                     sr = sb[y] if stencil else sr_dummy
                     # the span loop (the span processor)
+                    zchg = np.int32(0)
                     for k in range(nv):
                         x = lo + k
                         # truncated to int32 before the clamp (32-bit vector
@@ -655,10 +656,13 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                         if stencil == 2:        # (1: the stencil is only tested)
                             sr[u] = sn
                         if zwrite:
+                            zchg |= np.int32(zn != zold)
                             zr[u] = zn
                         if color:
                             cr0[u] = n0
                             if dual:
                                 cr1[u] = n1
+                    if zwrite and zchg != 0:
+                        ip[fragment.P_ZCHANGED] = 1     # (any thread: the same value)
 
     return walk
