@@ -538,7 +538,7 @@ def gl_default_state(g, w, h):
     LEQUAL, Gouraud; everything else off."""
     g.glViewport(0, 0, w, h)
     for cap in (g.GL_DEPTH_TEST, g.GL_STENCIL_TEST, g.GL_BLEND, g.GL_LIGHTING,
-                g.GL_DITHER, g.GL_CULL_FACE, g.GL_NORMALIZE):
+                g.GL_DITHER, g.GL_CULL_FACE, g.GL_NORMALIZE, g.GL_COLOR_MATERIAL):
         g.glDisable(cap)
     for i in range(8):
         g.glDisable(g.GL_LIGHT0 + i)
@@ -699,9 +699,7 @@ def gl_spheres(mesa, w, h, emu, depth_only=False, lmc=False):
     gl_light_model(g, model)
     if lmc:
         g.glColorMaterial(g.GL_FRONT_AND_BACK, g.GL_AMBIENT_AND_DIFFUSE)
-        g.glEnable(g.GL_COLOR_MATERIAL)
-    else:                   # (the context is shared by the workloads)
-        g.glDisable(g.GL_COLOR_MATERIAL)
+        g.glEnable(g.GL_COLOR_MATERIAL)     # (gl_default_state turns it off)
     g.glEnable(g.GL_DEPTH_TEST)
     sun = d[DEFLIGHT][fs.SUN]
     view = np.ascontiguousarray(emu.info["view"], np.float32)
