@@ -83,6 +83,31 @@ def test_phase_follows_window_origin(origin):
     assert (got != pattern_mask(RAND16, 16, W, H)).any()
 
 
+@pytest.mark.parametrize("size,words", [(PATTERN_16, RAND16), (PATTERN_32, RAND32),
+                                        (PATTERN_64, RAND64)])
+@pytest.mark.parametrize("origin", [(37, 11), (1000, 3)])
+def test_phase_in_a_wide_window_of_small_polygons(size, words, origin):
+    """The kernels read the pattern laid out for the window's columns
+    (raster.variants.pattern_rows); short spans, padded to whole vectors,
+    and long ones see the screen-aligned phase of every pattern size."""
+    W, H = 203, 37
+    open_win(W, H, origin=origin)
+    defpattern(3, size, words)
+    setpattern(3)
+    cpack(RED)
+    for x0 in range(0, W, 9):                   # 9 boxes of 7 pixels a row of boxes
+        for y0 in range(0, H, 6):
+            box(x0, y0, min(x0 + 6, W - 1), min(y0 + 4, H - 1))
+    box(0, H - 1, W - 1, H - 1)                 # and one long span
+    covered = np.zeros((H, W), bool)
+    for x0 in range(0, W, 9):
+        for y0 in range(0, H, 6):
+            covered[y0:y0 + 5, x0:x0 + 7] = True
+    covered[H - 1, :] = True
+    expect = covered & pattern_mask(words, size, W, H, *origin)
+    assert ((colour() == RED) == expect).all()
+
+
 def test_zero_bit_protects_colour_z_and_stencil():
     W = H = 16
     open_win(W, H, planes=8)

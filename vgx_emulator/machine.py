@@ -451,7 +451,7 @@ class VGX:
             origin=win.origin, twoside=bool(work is not None and work.twoside))
         if key.zwrite and not defer_z:
             fb.z_written()
-        return key, variants.banks(key, fb, targets, pat), ip
+        return key, variants.banks(key, fb, targets, pat, win.origin), ip
 
     # ------------------------------------------------------------------
     # primitives (docs/semantics.md §3)
@@ -735,12 +735,13 @@ class VGX:
         word = np.uint32(self.colour_word(st, st.colour))
         mask = np.uint32(st.cmask & layers.index_bits(win))
         pat = self.patterns.get(st.pattern) if st.pattern else None
+        rows = None if pat is None else variants.pattern_rows(pat, win.origin[0], win.fb.width)
         for t in self._targets(win):
             if pat is None:
                 fill(t, r[0], r[1], r[2], r[3], word, mask)
             else:
-                fill_pattern(t, r[0], r[1], r[2], r[3], word, mask, pat[1], pat[0],
-                             win.origin[0], win.origin[1])
+                fill_pattern(t, r[0], r[1], r[2], r[3], word, mask, rows, pat[0],
+                             win.origin[1])
         if self.trace_hook is not None:
             self.trace_hook(self, win, "clear")
 

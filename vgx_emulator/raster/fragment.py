@@ -14,7 +14,8 @@ Order (docs/semantics.md §6 "Order of the pixel operations", §7, §8):
 7. colour writemask, then every enabled colour buffer
 
 ``planes`` is the tuple of banks kernels take, in this order:
-(colour target 0, colour target 1, z, stencil, pattern bits).  Absent banks
+(colour target 0, colour target 1, z, stencil, pattern rows: the pattern's
+bits aligned in x to the window, raster.variants.pattern_rows).  Absent banks
 are 1x1 dummies that the kernel variant never touches.  ``ip`` is the int64
 parameter vector whose slots are the P_* names below (filled by
 :func:`pack`, from the state by raster.variants.choose); kernels copy it once
@@ -50,6 +51,7 @@ from . import stencil as _stencil
  P_ZX, P_ZK, P_ZA,                           # ... the zpass op
  P_CMASK, P_AFUNC, P_AREF, P_LOGICOP,        # colour writemask, afunction, logicop
  P_PATSIZE, P_ORGX, P_ORGY,                  # defpattern size, the window's screen origin
+                                            # (kernels read P_ORGY: the pattern rows are aligned in x)
  P_BS0, P_BS1, P_BS2, P_BS3, P_BS4, P_BS5,   # blend factors as blend.factor_terms (the
  P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5,   # generic blend kernel reads them)
  P_ZMAX,                                     # 1: spans may be skipped against the z maxima
@@ -239,7 +241,7 @@ def fragment_function(ztest, zwrite, color, cmode, stencil, blend, logic, atest,
         patbit = 1
         if pattern:
             n = prm[P_PATSIZE]
-            patbit = pat[(y + prm[P_ORGY]) % n, (x + prm[P_ORGX]) % n]
+            patbit = pat[(y + prm[P_ORGY]) % n, x]    # (variants.pattern_rows)
         zold = np.int64(zb[y, x]) if ztest else 0
         sold = np.int32(sb[y, x]) if stencil else np.int32(0)
         c0 = np.int64(cb0[y, x]) if color else 0

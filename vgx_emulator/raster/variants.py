@@ -95,12 +95,25 @@ def choose(st, fb, targets, *, bits, scissor, origin, pattern=None, twoside=Fals
     return key, ip
 
 
-def banks(key, fb, targets, pattern=None):
+def pattern_rows(pattern, orgx, width):
+    """The bits of a defpattern(3G) ``(size, bits)`` laid out for a window
+    ``width`` pixels wide whose screen origin is at column ``orgx``:
+    ``rows[r, x]`` is the pattern bit of window column x in pattern row r
+    (setpattern(3G): the pattern is aligned to the screen, so column x
+    reads pattern column (x + orgx) mod size).  The kernels then read a
+    row's bits at the pixel's own index, a contiguous load a span loop
+    vectorises, instead of a modulo per pixel; the row is still
+    (y + orgy) mod size."""
+    n, bits = pattern
+    return np.ascontiguousarray(bits[:, (np.arange(width) + orgx) % n])
+
+
+def banks(key, fb, targets, pattern=None, origin=(0, 0)):
     """The banks tuple kernels take (raster.fragment): the colour targets,
-    z, stencil and pattern bits, with 1 x 1 dummies for what ``key`` does
-    not use.  The z bank is made at its first use."""
+    z, stencil and pattern rows (pattern_rows), with 1 x 1 dummies for what
+    ``key`` does not use.  The z bank is made at its first use."""
     return (targets[0] if targets else _DUMMY_C,
             targets[1] if len(targets) > 1 else _DUMMY_C,
             fb.ensure_z() if key.ztest else _DUMMY_Z,
             fb.stencil if key.stencil else _DUMMY_S,
-            pattern[1] if pattern is not None else _SOLID)
+            pattern_rows(pattern, origin[0], fb.width) if key.pattern else _SOLID)

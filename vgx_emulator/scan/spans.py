@@ -46,13 +46,15 @@ def fill_z(plane, x0, x1, y0, y1, value, mask):
 
 
 @njit
-def fill_pattern(plane, x0, x1, y0, y1, value, mask, pat, n, orgx, orgy):
-    """fill() where the screen-aligned pattern bit is 1 (clear under setpattern)."""
+def fill_pattern(plane, x0, x1, y0, y1, value, mask, rows, n, orgy):
+    """fill() where the screen-aligned pattern bit is 1 (clear under
+    setpattern); ``rows``: the pattern laid out for the window
+    (raster.variants.pattern_rows), ``n`` its size."""
     keep = ~mask
     for y in range(y0, y1 + 1):
-        py = (y + orgy) % n
+        prow = rows[(y + orgy) % n]
         for x in range(x0, x1 + 1):
-            if pat[py, (x + orgx) % n]:
+            if prow[x]:
                 plane[y, x] = (plane[y, x] & keep) | (value & mask)
 
 

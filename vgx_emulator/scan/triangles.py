@@ -509,7 +509,6 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         prm = fragment.params(ip)
         bt = fragment.blend_terms(blend, bterms, prm)
         npat = prm[fragment.P_PATSIZE]
-        orgx = prm[fragment.P_ORGX]
         orgy = prm[fragment.P_ORGY]
         zlo = prm[fragment.P_ZLO]
         zhi = prm[fragment.P_ZHI]
@@ -620,6 +619,7 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                     cr1 = cb1[y] if (color and dual) else cr1_dummy
                     zr = zb[y] if ztest else zr_dummy
                     sr = sb[y] if stencil else sr_dummy
+                    prow = pat[(y + orgy) % npat] if pattern else pat[0]
                     # the span loop (the span processor)
                     zchg = np.int32(0)
                     for k in range(nv):
@@ -644,9 +644,9 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                                            cols, a, b, c, prov[i], TC, tex, tlevel, tbil)
                         kk = np.int32(k)        # (an int32 test: 8 lanes)
                         patbit = np.int32((kk >= kin0) & (kk <= kin1)) if pad else np.int32(1)
-                        if pattern:
-                            patbit &= pat[(y + orgy) % npat, (x + orgx) % npat]
                         u = np.uint64(x)      # unsigned index: no wraparound test
+                        if pattern:
+                            patbit &= np.int32(prow[u])     # (pattern_rows: aligned in x)
                         zold = np.int32(zr[u]) if ztest else np.int32(0)
                         sold = np.int32(sr[u]) if stencil else np.int32(0)
                         c0 = np.int64(cr0[u]) if color else np.int64(0)
