@@ -36,6 +36,11 @@ Workloads:
                   infinity (v4f / glVertex4f with w = 0) under an infinite far
                   plane; objects / display lists.
   heidmann-1991-immediate  the same, sent call by call in every frame.
+  heidmann-spheres  the program's "spheres" scene (four spheres on the ground,
+                  one light) drawn the 1991 way (--two-pass --infinite,
+                  objects): the scene of a side-by-side harness written from
+                  outside, where stencil volumes of one light over a few
+                  curved casters make many small per-pass batches.
   heidmann-soft   the program's figure 6 (five objects, one light): 32 jittered
                   light positions accumulated (acbuf / glAccum).
   shadowmap       the 5b scene's depth from each of its 4 lights into a
@@ -120,7 +125,7 @@ import vgx_emulator  # noqa: E402
 from vgx_emulator.display.png import write_png  # noqa: E402
 
 WORKLOADS = ["spheres", "spheres-depth", "spheres-lmcolor", "heidmann", "heidmann-immediate", "heidmann-1991",
-             "heidmann-1991-immediate", "heidmann-soft", "shadowmap", "fill-z", "fill-stencil",
+             "heidmann-1991-immediate", "heidmann-spheres", "heidmann-soft", "shadowmap", "fill-z", "fill-stencil",
              "cold"]
 SHADOWMAP_SIZE = 1024
 NQUADS = 32
@@ -917,9 +922,10 @@ def build_pair(name, mesa, w, h):
         return emu, gl_spheres(mesa, w, h, emu, depth, lmc)
     if name.startswith("heidmann"):
         imm = name.endswith("-immediate")
-        style = ("--two-pass", "--infinite") if "1991" in name else ()
-        emu = emu_heidmann(w, h, "6" if name == "heidmann-soft" else "5b", objects=not imm,
-                           style=style)
+        style = ("--two-pass", "--infinite") if ("1991" in name or name == "heidmann-spheres") \
+            else ()
+        figure = {"heidmann-soft": "6", "heidmann-spheres": "spheres"}.get(name, "5b")
+        emu = emu_heidmann(w, h, figure, objects=not imm, style=style)
         return emu, gl_heidmann(mesa, w, h, emu, immediate=imm, two_pass=bool(style),
                                 infinite=bool(style))
     if name == "shadowmap":

@@ -21,6 +21,9 @@ Figures (``--figure``):
          AC_RETURN 1/32); ``--jitter N`` for fewer images
   eyein  the eye inside the crate's shadow volume: the z-pass count of the
          article is off by one (``--zfail`` fixes it, below)
+  spheres  not a figure of the article: four spheres on the ground under one
+         light, the scene a side-by-side harness of 1991-style ports draws
+         (benchmarks/vs_mesa.py, workload heidmann-spheres)
 
 Options: ``--zfail`` (depth-fail counting), ``--jitter N``, ``--size WxH``,
 ``--volumes-only I`` (stop after the volume pass of light I: the stencil
@@ -202,6 +205,7 @@ FIGURE_SETUP = {     # scene, lights, view
     "5b": ("full", ["red", "green", "blue", "yellow"], "high"),
     "6": ("five", ["white"], "default"),
     "eyein": ("five", ["low"], "eyein"),
+    "spheres": ("spheres", ["white"], "default"),
 }
 SOFT_RADIUS = 0.7
 
@@ -334,6 +338,14 @@ def make_scene(kind):
         objs.append(Object("triangle", [(-3.0, 3.2, 1.5), (2.5, 3.6, 2.0), (-0.5, 3.0, -3.0)],
                            [(0, 1, 2)], (0.9, 0.75, 0.2)))
         return objs
+    if kind == "spheres":
+        return objs + [
+            sphere(f"sphere{k}", (x, 1.0 + LIFT, z), 1.0, 20, 10, col,
+                   specular=(0.5, 0.5, 0.5), shininess=30.0)
+            for k, (x, z, col) in enumerate([(-3.0, 2.0, (0.9, 0.3, 0.3)),
+                                             (3.0, 2.0, (0.3, 0.8, 0.3)),
+                                             (-3.0, -3.0, (0.3, 0.4, 0.9)),
+                                             (3.0, -3.0, (0.9, 0.8, 0.3))])]
     objs += [
         box("crate", -4.0, -2.0, L, 2.0 + L, -1.0, 1.0, (0.85, 0.5, 0.2)),
         box("pillar", 2.0, 3.0, L, 5.0 + L, -3.0, -2.0, (0.55, 0.7, 0.9)),

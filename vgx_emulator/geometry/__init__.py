@@ -77,18 +77,44 @@ def lighting_active(st, defs):
             and st.lmodel in defs[lighting.DEFLMODEL])
 
 
+#: rows per matrix product in _transform: an (n, 4) x (4, 4) product of at
+#: most 4096 rows is 65,536 multiply-adds, under the size from which
+#: OpenBLAS hands a product to its threads (waking them on a busy 2-core
+#: machine cost up to 10 ms a batch); one BLAS call per chunk is still
+#: 8-10x faster than einsum, which does not use BLAS
+_PRODUCT_ROWS = 4096
+#: at most this many runs of one transform are multiplied run by run;
+#: more (a matrix change every few vertices) go through one einsum
+_MAX_RUNS = 64
+
+
+def _product(pos, m, out):
+    """out = pos @ m, chunked (_PRODUCT_ROWS)."""
+    for s in range(0, len(pos), _PRODUCT_ROWS):
+        np.matmul(pos[s:s + _PRODUCT_ROWS], m, out=out[s:s + _PRODUCT_ROWS])
+
+
 def _transform(pos, attrs, xforms):
-    """Eye and clip coordinates of every vertex under its run's matrices.
-    (einsum, not ``@``: a (N, 4) x (4, 4) product gains nothing from BLAS
-    threads, and waking them on a busy 2-core machine cost up to 10 ms.)"""
+    """Eye and clip coordinates of every vertex under its run's matrices
+    (row vectors times the modelview and modelview x projection)."""
     xf = attrs[:, 8].astype(np.int64)
+    eye, clp = np.empty((len(pos), 4)), np.empty((len(pos), 4))
+    if not len(pos):
+        return eye, clp, xf
     if len(xforms) == 1:
-        t = xforms[0]
-        return np.einsum("ni,ij->nj", pos, t.modelview), np.einsum("ni,ij->nj", pos, t.clip), xf
-    mv = np.stack([t.modelview for t in xforms])
-    cm = np.stack([t.clip for t in xforms])
-    eye = np.einsum("ni,nij->nj", pos, mv[xf])
-    clp = np.einsum("ni,nij->nj", pos, cm[xf])
+        _product(pos, xforms[0].modelview, eye)
+        _product(pos, xforms[0].clip, clp)
+        return eye, clp, xf
+    cut = np.flatnonzero(xf[1:] != xf[:-1]) + 1
+    if len(cut) >= _MAX_RUNS:
+        mv = np.stack([t.modelview for t in xforms])
+        cm = np.stack([t.clip for t in xforms])
+        return np.einsum("ni,nij->nj", pos, mv[xf]), np.einsum("ni,nij->nj", pos, cm[xf]), xf
+    bounds = [0] + cut.tolist() + [len(pos)]
+    for s, e in zip(bounds[:-1], bounds[1:]):
+        t = xforms[xf[s]]
+        _product(pos[s:e], t.modelview, eye[s:e])
+        _product(pos[s:e], t.clip, clp[s:e])
     return eye, clp, xf
 
 
