@@ -122,23 +122,35 @@ def per_vertex(ev, recs, n, mats):
     last = np.searchsorted(at, np.arange(0, 4 * n, 4), side="right") - 1
     if n and last[0] < 0:
         raise AssertionError("a vertex before any attribute record")
+    none = None
 
     def upto(mask):
-        """Per vertex: the index of the last event of ``mask`` before it (-1: none)."""
+        """Per vertex: the index of the last event of ``mask`` before it (-1:
+        none; a kind the batch never sent costs no pass over the vertices)."""
+        nonlocal none
+        if not mask.any():
+            if none is None:
+                none = np.full(n, -1, np.int64)
+            return none
         return np.maximum.accumulate(np.where(mask, idx, -1))[last]
     rr = upto(kind == EV_REC)
     if n and rr[0] < 0:
         raise AssertionError("a vertex before any attribute record")
-    out = recs[ev[rr, 2].astype(np.int64)]
+    if len(recs) == 1:                      # one record for every vertex: no gather
+        out = np.empty((n, RECORD))
+        out[:] = recs[0]
+    else:
+        out = recs[ev[rr, 2].astype(np.int64)]
     nn = upto(kind == EV_NORMAL)
     cc = upto(kind >= EV_COLOUR)
     tt = upto(kind == EV_TEX)
-    _override(out, R_NORMAL, nn > rr, ev[nn, 2:5])
-    _override(out, R_STRQ, tt > rr, ev[tt, 2:6])
+    _override(out, R_NORMAL, nn > rr, ev, nn, slice(2, 5))
+    _override(out, R_STRQ, tt > rr, ev, tt, slice(2, 6))
     use = cc > rr
     later = use | (nn > rr)
     if later.any():
-        _override(out, R_COLOUR, use, colour_values(kind, ev[:, 2:6])[cc])
+        if use.any():
+            out[use, R_COLOUR] = colour_values(kind[cc[use]], ev[cc[use], 2:6])
         flags = out[:, R_FLAGS].astype(np.int64)
         lwn = np.where(later, nn > cc, (flags & LAST_WAS_NORMAL) != 0)
         bound = np.array([m[0] != 0 for m in mats], bool)[out[:, R_MATERIAL].astype(np.int64)]
@@ -147,12 +159,13 @@ def per_vertex(ev, recs, n, mats):
     return out
 
 
-def _override(out, cols, use, values):
-    """out[use, cols] = values[use], whole columns when every row is used."""
+def _override(out, cols, use, ev, rows, vals):
+    """out[use, cols] = ev[rows[use], vals]: the values of the events
+    ``rows`` where ``use``; whole columns when every row is used."""
     if use.all():
-        out[:, cols] = values
+        out[:, cols] = ev[rows, vals]
     elif use.any():
-        out[use, cols] = values[use]
+        out[use, cols] = ev[rows[use], vals]
 
 
 class VertexBatch:
