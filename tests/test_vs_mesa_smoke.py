@@ -48,6 +48,7 @@ CASES = [
     ("fill-stencil", 0.0),    # every pixel counts to 32 on both sides
     ("spheres", 0.05),        # lit; edge pixels follow each side's fill rule
     ("spheres-depth", 0.05),  # the z-buffers, scaled alike
+    ("heidmann-spheres", 0.05),  # stencil volumes the 1991 way; edge pixels as spheres
 ]
 
 

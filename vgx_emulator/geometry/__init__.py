@@ -101,10 +101,6 @@ def _transform(pos, attrs, xforms):
     eye, clp = np.empty((len(pos), 4)), np.empty((len(pos), 4))
     if not len(pos):
         return eye, clp, xf
-    if len(xforms) == 1:
-        _product(pos, xforms[0].modelview, eye)
-        _product(pos, xforms[0].clip, clp)
-        return eye, clp, xf
     cut = np.flatnonzero(xf[1:] != xf[:-1]) + 1
     if len(cut) >= _MAX_RUNS:
         mv = np.stack([t.modelview for t in xforms])

@@ -122,15 +122,12 @@ def per_vertex(ev, recs, n, mats):
     last = np.searchsorted(at, np.arange(0, 4 * n, 4), side="right") - 1
     if n and last[0] < 0:
         raise AssertionError("a vertex before any attribute record")
-    none = None
+    none = np.full(n, -1, np.int64)
 
     def upto(mask):
         """Per vertex: the index of the last event of ``mask`` before it (-1:
         none; a kind the batch never sent costs no pass over the vertices)."""
-        nonlocal none
         if not mask.any():
-            if none is None:
-                none = np.full(n, -1, np.int64)
             return none
         return np.maximum.accumulate(np.where(mask, idx, -1))[last]
     rr = upto(kind == EV_REC)

@@ -50,14 +50,14 @@ from . import stencil as _stencil
  P_PX, P_PK, P_PA,                           # ... the pass (z fails) op
  P_ZX, P_ZK, P_ZA,                           # ... the zpass op
  P_CMASK, P_AFUNC, P_AREF, P_LOGICOP,        # colour writemask, afunction, logicop
- P_PATSIZE, P_ORGX, P_ORGY,                  # defpattern size, the window's screen origin
-                                            # (kernels read P_ORGY: the pattern rows are aligned in x)
+ P_PATSIZE, P_ORGY,                          # defpattern size, the window's screen origin y
+                                            # (x is in the pattern rows: variants.pattern_rows)
  P_BS0, P_BS1, P_BS2, P_BS3, P_BS4, P_BS5,   # blend factors as blend.factor_terms (the
  P_BD0, P_BD1, P_BD2, P_BD3, P_BD4, P_BD5,   # generic blend kernel reads them)
  P_ZMAX,                                     # 1: spans may be skipped against the z maxima
  P_PADSPAN,                                  # spans shorter than this run over whole vectors
  P_ZCHANGED,                                 # out: the triangle walker changed a stored z
- NPARAMS) = range(45)
+ NPARAMS) = range(44)
 #: the slots kernels read as int32 (params): the stencil arithmetic on the
 #: 8-bit planes then runs in 32-bit vector lanes
 STENCIL_SLOTS = range(P_SREF, P_ZA + 1)
@@ -71,7 +71,8 @@ def pack(*, scissor, zfunc, zmask, zrange, stencil, cmask, afunction, logicop, b
     zwritemask; ``zrange``: (lo, hi) of the stored z; ``stencil``: (func,
     ref, mask, writemask, max, fail terms, pass terms, zpass terms);
     ``afunction``: (ref, func); ``blend``: (source terms, destination terms);
-    ``origin``: the window's screen origin, which patterns are aligned to."""
+    ``origin``: the window's screen origin, which patterns are aligned to
+    (its y here; its x is in the pattern rows the kernels take)."""
     ip = np.zeros(NPARAMS, np.int64)
     ip[P_SX0], ip[P_SX1], ip[P_SY0], ip[P_SY1] = scissor
     ip[P_ZFUNC] = zfunc
@@ -89,7 +90,7 @@ def pack(*, scissor, zfunc, zmask, zrange, stencil, cmask, afunction, logicop, b
     ip[P_BS0:P_BS5 + 1] = blend[0]
     ip[P_BD0:P_BD5 + 1] = blend[1]
     ip[P_PATSIZE] = pattern_size
-    ip[P_ORGX], ip[P_ORGY] = origin
+    ip[P_ORGY] = origin[1]
     ip[P_ZMAX] = zmax
     ip[P_PADSPAN] = padspan
     return ip
@@ -107,7 +108,7 @@ def params(ip):
             i32(ip[P_PX]), i32(ip[P_PK]), i32(ip[P_PA]),
             i32(ip[P_ZX]), i32(ip[P_ZK]), i32(ip[P_ZA]),
             ip[P_CMASK], ip[P_AFUNC], ip[P_AREF], ip[P_LOGICOP],
-            ip[P_PATSIZE], ip[P_ORGX], ip[P_ORGY],
+            ip[P_PATSIZE], ip[P_ORGY],
             ip[P_BS0], ip[P_BS1], ip[P_BS2], ip[P_BS3], ip[P_BS4], ip[P_BS5],
             ip[P_BD0], ip[P_BD1], ip[P_BD2], ip[P_BD3], ip[P_BD4], ip[P_BD5],
             ip[P_ZMAX], ip[P_PADSPAN])
