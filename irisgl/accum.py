@@ -18,7 +18,7 @@ def acbuf(op, value):
     w = win("acbuf")
     o = token("acbuf", op, _AC, "operation")
     v = num("acbuf", value, "value")
-    if w.fb.accum is None:
+    if not w.fb.has("accum"):
         fail("acbuf", "no accumulation buffer is configured", "acsize(16) then gconfig()")
     if not w.st.rgb:
         fail("acbuf", "accumulation in colour-map mode", "RGB mode only")

@@ -20,7 +20,7 @@ def zbuffer(b):
     machine.state_change(w)
     w.st.zbuffer = v
     if v:
-        w.fb.ensure_z()
+        w.fb.ensure_z(queued=True)
 
 
 @glcall

@@ -27,7 +27,7 @@ def stencil(enable, ref, func, mask, fail_, pass_, zpass):
             machine.state_change(w)
             w.st.stencil_on = False
         return
-    if w.fb.stencil is None:
+    if not w.fb.has("stencil"):
         fail("stencil", "no stencil planes are configured", "stensize(n > 0) then gconfig()")
     r = ulong(integer("stencil", ref, "ref"))
     f = token("stencil", func, _SF, "stencil function")

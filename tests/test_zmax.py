@@ -2,7 +2,7 @@
 
 The skip is an optimisation that must never change a pixel: every scene
 here is drawn twice, with the maxima and with them switched off
-(machine._z_maxima returning None), and the colour, z and stencil banks
+(machine._z_maxima_bound returning None), and the colour, z and stencil banks
 must be identical.  The passes mix the cases that decide whether maxima
 may be used and whether they must be rebuilt: z writes that raise z
 (ZF_GREATER, ZF_ALWAYS), partial zwritemasks, partial and whole clears,
@@ -79,7 +79,7 @@ def _scene(open_window, seed):
 def test_skipping_spans_changes_no_bank(open_window, vgx, monkeypatch, seed):
     with_maxima = _scene(open_window, seed)
     vgx.reset()
-    monkeypatch.setattr(type(vgx), "_z_maxima", lambda self, win: None)
+    monkeypatch.setattr(type(vgx), "_z_maxima_bound", lambda self, win: None)
     without = _scene(open_window, seed)
     for a, b in zip(with_maxima, without):
         np.testing.assert_array_equal(a, b)

@@ -75,6 +75,12 @@ JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,
 #: everything on one.
 PARALLEL = os.environ.get("VGX_PARALLEL", "1") != "0"
 
+#: the raster subsystem on its own thread, pipelined with the geometry
+#: (pipeline.py): on with PARALLEL on a machine of more than one core;
+#: VGX_PIPELINE=0 runs scan conversion on the calling thread.
+PIPELINE = PARALLEL and (os.cpu_count() or 1) > 1 and \
+    os.environ.get("VGX_PIPELINE", "1") != "0"
+
 #: Virtual screen of the VGX (docs/porting.md §5).
 SCREEN_WIDTH = 1280
 SCREEN_HEIGHT = 1024

@@ -456,7 +456,11 @@ def _neutral(p):
 
 def fingerprint(obj):
     """A hash of everything reachable from ``obj`` (the machine): numbers,
-    strings, arrays, containers and object attributes, functions by name."""
+    strings, arrays, containers and object attributes, functions by name;
+    after the queued raster work (pipeline.py: the attributes are read
+    directly, not through the banks' waiting accessors)."""
+    from . import pipeline
+    pipeline.sync()
     h = hashlib.sha1()
     seen, keep = set(), []
 

@@ -13,7 +13,7 @@ Reads (lrectread, PNG output) flush too.
 """
 import numpy as np
 
-from . import config, display, geometry, scan
+from . import config, display, geometry, pipeline, scan
 from .errors import fail, warn
 from .events import INPUTCHANGE, REDRAW, EventQueue
 from .framebuffer import ZMAX, ZMIN, Framebuffer
@@ -154,7 +154,9 @@ class VGX:
         self.V = b.pos.extend if b.open is not None else _closed
 
     def reset(self):
-        """Power-on state: no windows, default colour map, empty definitions."""
+        """Power-on state: no windows, default colour map, empty definitions
+        (after the raster work queued for the old windows)."""
+        pipeline.sync()
         self.windows = {}
         self.current = None
         self.next_gid = 1
@@ -285,8 +287,10 @@ class VGX:
         self.frame_end(win)
 
     def frame_end(self, win):
-        """A frame point (swapbuffers, gflush, finish): the runner counts it."""
-        self._flush(win)
+        """A frame point (swapbuffers, gflush, finish): the runner counts it.
+        The raster work queued so far is finished first (finish(3G): the
+        pipeline drained), so a frame point ends a whole frame."""
+        self._finish(win)
         win.frames += 1
         self.maps.tick()                   # cyclemap/blink: retraces per frame point
         if self.trace_hook is not None:
@@ -305,6 +309,12 @@ class VGX:
     def flush(self):
         if self.current is not None:
             self._flush(self.current)
+
+    def _finish(self, win):
+        """Flush ``win`` and wait for every queued raster pass
+        (pipeline.py): before work that touches pixels on this thread."""
+        self._flush(win)
+        pipeline.sync()
 
     def _picking(self, win):
         """Whether win is in picking or selecting mode (nothing is drawn)."""
@@ -337,23 +347,17 @@ class VGX:
                                           assembled=self.assembled)
             if st.scrbox_mode == 1:           # scrbox(3G) SB_TRACK
                 scrbox.track(st, work, vp)
-            # the maxima before the pass; a pass of triangles marks them stale
-            # for the passes after it only when it changed a stored z (the
-            # walker reports it: a redraw with ZF_LEQUAL or ZF_EQUAL of the
-            # surfaces already in the z bank keeps them)
             filled = work.klass == FILLED
-            zmaxima = self._z_maxima(win) if filled else None
-            key, planes, ip = self._raster_setup(win, work, filled, defer_z=filled)
-            ip[fragment.P_ZMAX] = zmaxima is not None
+            zfar = self._z_maxima_bound(win) if filled else None
+            key, planes, ip = self._raster_setup(win, work, filled, defer_z=True)
             key = key._replace(texture=tex is not None)
             if key.gouraud and (not key.color or (work.klass == FILLED and tex is None
                                                   and work.constant_colour())):
                 key = key._replace(gouraud=False)   # same pixels, no interpolation
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
-            scan.scan_batch(work, key, planes, ip, cull, not st.subpixel, tex, zmaxima)
-            if filled and key.zwrite and ip[fragment.P_ZCHANGED]:
-                win.fb.z_written()
+            pipeline.submit(_raster_pass, win.fb, work, key, planes, ip, cull,
+                            not st.subpixel, tex, zfar)
             if self.trace_hook is not None:
                 self.trace_hook(self, win, "draw")
         if b.open is not None:
@@ -361,24 +365,24 @@ class VGX:
         else:
             b.reset()
 
-    def _z_maxima(self, win):
-        """The z bank's per-segment maxima (framebuffer/zmax.py) when the
-        pass may skip spans against them: z test LESS, EQUAL or LEQUAL, z
+    def _z_maxima_bound(self, win):
+        """Whether a pass may skip spans against the z bank's per-segment
+        maxima (framebuffer/zmax.py): z test LESS, EQUAL or LEQUAL, z
         written in full or not at all (its writes then only lower z), and a
         fragment failing the z test changes nothing (stencil off, or its
-        fail and z-fail ops ST_KEEP).  Otherwise None."""
+        fail and z-fail ops ST_KEEP).  Returns the far end of the depth
+        range then (_raster_pass: maxima uniform at or beyond it, just
+        cleared, make no span fail), otherwise None."""
         st, fb = win.st, win.fb
         if not st.zbuffer or \
                 st.zfunc not in (_depth.ZF_LESS, _depth.ZF_EQUAL, _depth.ZF_LEQUAL):
             return None
         if st.zwritemask & 0xFFFFFF not in (0, 0xFFFFFF):
             return None
-        if st.stencil_on and fb.stencil is not None and \
+        if st.stencil_on and fb.has("stencil") and \
                 (st.stencil[3] != _stencil.ST_KEEP or st.stencil[4] != _stencil.ST_KEEP):
             return None
-        if fb.zmax_uniform is not None and fb.zmax_uniform >= max(st.depth_range):
-            return None         # just cleared to the far end: no span can fail
-        return fb.z_maxima()
+        return max(st.depth_range)
 
     def _texturing(self, win):
         """(Texture, parameters) when texturing is on: a texture != 0 bound to
@@ -419,17 +423,17 @@ class VGX:
         if st.drawmode != layers.NORMALDRAW:
             # drawmode(3G): the pop-up/overlay/underlay bank (none in
             # CURSORDRAW, or without planes)
-            bank = fb.layer(st.drawmode) if st.drawmode in layers.LAYERS else None
+            bank = fb.layer(st.drawmode, queued=True) if st.drawmode in layers.LAYERS else None
             return [bank] if bank is not None else []
         zdraw = getattr(st, "zdraw", False)
         if not st.double:
-            out = [fb.front] if (st.front_enabled or not zdraw) else []
+            out = [fb.queued("front")] if (st.front_enabled or not zdraw) else []
         else:
             out = []
             if st.back_enabled:
-                out.append(fb.back)
+                out.append(fb.queued("back"))
             if st.front_enabled:
-                out.append(fb.front)
+                out.append(fb.queued("front"))
         if zdraw and len(out) < 2:
             # zdraw(3G): colour words also go to the z bank, as a third
             # colour buffer (at most two banks per pass: docs/windows-and-devices.md)
@@ -736,12 +740,10 @@ class VGX:
         mask = np.uint32(st.cmask & layers.index_bits(win))
         pat = self.patterns.get(st.pattern) if st.pattern else None
         rows = None if pat is None else variants.pattern_rows(pat, win.origin[0], win.fb.width)
-        for t in self._targets(win):
-            if pat is None:
-                fill(t, r[0], r[1], r[2], r[3], word, mask)
-            else:
-                fill_pattern(t, r[0], r[1], r[2], r[3], word, mask, rows, pat[0],
-                             win.origin[1])
+        pipeline.submit(_kernel_calls, win.fb, [
+            (fill, (t, r[0], r[1], r[2], r[3], word, mask)) if pat is None else
+            (fill_pattern, (t, r[0], r[1], r[2], r[3], word, mask, rows, pat[0], win.origin[1]))
+            for t in self._targets(win)])
         if self.trace_hook is not None:
             self.trace_hook(self, win, "clear")
 
@@ -751,11 +753,12 @@ class VGX:
         self._flush(win)
         r = self.clear_rect(win)
         fb = win.fb
-        if r is None or fb.stencil is None or self._picking(win):
+        if r is None or not fb.has("stencil") or self._picking(win):
             return
         smax = (1 << fb.stencil_planes) - 1
-        fill(fb.stencil, r[0], r[1], r[2], r[3], np.uint8(sval & smax),
-             np.uint8(win.st.swritemask & smax))
+        pipeline.submit(_kernel_calls, fb, [(fill, (fb.queued("stencil"), r[0], r[1], r[2], r[3],
+                                                  np.uint8(sval & smax),
+                                                  np.uint8(win.st.swritemask & smax)))])
         if self.trace_hook is not None:
             self.trace_hook(self, win, "sclear", sval & smax)
 
@@ -765,9 +768,9 @@ class VGX:
         if r is None or self._picking(win):
             return
         m = win.st.zwritemask & 0xFFFFFF
-        fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], ZMAX, m)
-        if m:
-            win.fb.z_written(r if m == 0xFFFFFF else None, ZMAX)
+        pipeline.submit(_kernel_calls, win.fb,
+                        [(fill_z, (win.fb.ensure_z(queued=True), r[0], r[1], r[2], r[3], ZMAX, m))],
+                        r if m == 0xFFFFFF else None, ZMAX if m else None)
         if self.trace_hook is not None:
             self.trace_hook(self, win, "zclear")
 
@@ -779,11 +782,12 @@ class VGX:
         if r is None:
             return
         word = cval & layers.index_bits(win)
-        for t in self._targets(win):
-            fill(t, r[0], r[1], r[2], r[3], np.uint32(word), np.uint32(0xFFFFFFFF))
         z = min(max(int(zval), ZMIN), ZMAX)
-        fill_z(win.fb.ensure_z(), r[0], r[1], r[2], r[3], z, 0xFFFFFF)
-        win.fb.z_written(r, z)
+        pipeline.submit(_kernel_calls, win.fb,
+                        [(fill, (t, r[0], r[1], r[2], r[3], np.uint32(word), np.uint32(0xFFFFFFFF)))
+                         for t in self._targets(win)] +
+                        [(fill_z, (win.fb.ensure_z(queued=True), r[0], r[1], r[2], r[3], z,
+                                   0xFFFFFF))], r, z)
         if self.trace_hook is not None:
             self.trace_hook(self, win, "czclear")
 
@@ -797,47 +801,56 @@ class VGX:
     # ------------------------------------------------------------------
     # accumulation buffer (docs/semantics.md §10)
     def acbuf(self, win, op, value):
+        """acbuf(3G), queued on the raster thread like a pass (pipeline.py):
+        the accumulation reads the bank readsource names as the passes
+        queued before it left it."""
         from .framebuffer import accum as A
         self._flush(win)
         r = self.clear_rect(win)
         if r is None or self._picking(win):
             return
         st, fb = win.st, win.fb
+        acc = fb.queued("accum")
         if op == A.AC_RETURN:
             v = min(max(value, 0.0), 1.0)
             mask = st.cmask & (0xFFFFFFFF if st.rgb else 0xFFF)
-            for t in self._targets(win):
-                A.give_back(fb.accum, t, v, mask, not st.rgb, r[0], r[1], r[2], r[3])
+            pipeline.submit(_kernel_calls, fb, [
+                (A.give_back, (acc, t, v, mask, not st.rgb, r[0], r[1], r[2], r[3]))
+                for t in self._targets(win)])
             if self.trace_hook is not None:
                 self.trace_hook(self, win, "acbuf", op, v)
             return
         if op in (A.AC_ACCUMULATE, A.AC_CLEAR_ACCUMULATE):
             value = min(max(value, -256.0), 256.0)
-            src = self.read_bank(win, win.readsource)
+            src = self.read_bank(win, win.readsource, queued=True)
         else:
             src = _DUMMY_C
-        A.accumulate(fb.accum, src, op, float(value), r[0], r[1], r[2], r[3])
+        pipeline.submit(_kernel_calls, fb, [
+            (A.accumulate, (acc, src, op, float(value), r[0], r[1], r[2], r[3]))])
         if self.trace_hook is not None:
             self.trace_hook(self, win, "acbuf", op, float(value))
 
     # ------------------------------------------------------------------
     # reading pixels (docs/semantics.md §11)
-    def read_bank(self, win, source):
+    def read_bank(self, win, source, queued=False):
+        """The bank readsource(3G) ``source`` reads; ``queued``: for work
+        queued on the raster thread, without waiting (Framebuffer.queued)."""
         fb = win.fb
         if source == SRC_AUTO and win.st.drawmode in layers.LAYERS:
             source = {v: k for k, v in _SRC_LAYER.items()}[win.st.drawmode]
         if source in _SRC_LAYER:
             # readsource(SRC_PUP/SRC_OVER/SRC_UNDER): a framebuffer without
             # planes reads 0
-            bank = fb.layer(_SRC_LAYER[source])
+            bank = fb.layer(_SRC_LAYER[source], queued=queued)
             return bank if bank is not None else np.zeros((win.height, win.width), np.uint32)
         if source == SRC_ZBUFFER:
-            return fb.ensure_z()
+            return fb.ensure_z(queued=queued)
+        back = fb.queued("back") if queued else fb.back
         if source == SRC_BACK:
-            return fb.back
+            return back
         if source == SRC_FRONT or not win.st.double:
-            return fb.front
-        return fb.back
+            return fb.queued("front") if queued else fb.front
+        return back
 
     def lrectread(self, win, x1, y1, x2, y2, source):
         """The (h, w) block with row 0 at y1; off-window pixels read 0."""
@@ -854,7 +867,7 @@ class VGX:
     def write_pixels(self, win, x1, y1, words, zoom):
         """lrectwrite/rectwrite: words (h, w), row 0 at y1 (docs/semantics.md §11)."""
         from .scan.spans import pixel_kernel
-        self._flush(win)
+        self._finish(win)
         if self._picking(win) or self.clear_rect(win) is None:
             return      # picking/selecting, or viewport ∩ scrmask ∩ window is empty
         key, planes, ip = self._raster_setup(win, None, filled=False)
@@ -872,7 +885,7 @@ class VGX:
         window, never to the viewport; patterns do not apply."""
         from .raster import fragment as F
         from .scan.lines import point_kernel
-        self._flush(win)
+        self._finish(win)
         st = win.st
         sc = _intersect(st.scrmask, (0, win.width - 1, 0, win.height - 1))
         if sc is None or not len(xs) or self._picking(win):
@@ -902,6 +915,32 @@ class VGX:
         if self.gamma is not None:           # gammaramp(3G): applied at scan-out
             img = np.stack([self.gamma[img[..., c], c] for c in range(3)], axis=-1)
         return img
+
+
+def _raster_pass(fb, work, key, planes, ip, cull, closed_lines, tex, zfar):
+    """The Raster Subsystem's part of a batch (queued by VGX._flush on the
+    raster thread, pipeline.py): the z maxima when the pass may skip spans
+    against them (zfar: VGX._z_maxima_bound), scan conversion, and the
+    maxima marked stale when the pass changed a stored z (the walker
+    reports it: a redraw with ZF_LEQUAL or ZF_EQUAL of the surfaces already
+    in the z bank keeps them) or wrote z as lines or points."""
+    zmaxima = None
+    if zfar is not None and not (fb.zmax_uniform is not None and fb.zmax_uniform >= zfar):
+        zmaxima = fb.z_maxima()     # (uniform at the far end: no span can fail)
+    ip[fragment.P_ZMAX] = zmaxima is not None
+    scan.scan_batch(work, key, planes, ip, cull, closed_lines, tex, zmaxima)
+    if key.zwrite and (work.klass != FILLED or ip[fragment.P_ZCHANGED]):
+        fb.z_written()
+
+
+def _kernel_calls(fb, calls, zrect=None, zvalue=None):
+    """Kernel calls queued like a pass (pipeline.py: the fills of a clear,
+    acbuf's): each ``(kernel, args)``, then, for a z clear, the z maxima set
+    or marked stale (Framebuffer.z_written)."""
+    for kernel, args in calls:
+        kernel(*args)
+    if zvalue is not None:
+        fb.z_written(zrect, zvalue)
 
 
 def _intersect(*rects):

@@ -66,7 +66,7 @@ def _draw_label(win):
     sf, so = _names("SF_"), _names("ST_")
     colour = (st.cmask != 0) and st.drawmode == 0x10 or st.drawmode != 0x10
     zw = st.zbuffer and (st.zwritemask & 0xFFFFFF) != 0
-    sten = st.stencil_on and win.fb.stencil is not None
+    sten = st.stencil_on and win.fb.has("stencil")
     ref, func, _, f1, f2, f3 = st.stencil
     writes_s = sten and (f1, f2, f3) != (0, 0, 0)
     if not colour and not zw:

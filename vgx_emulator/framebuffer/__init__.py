@@ -25,6 +25,7 @@ not a VGX bank: built from z only when a pass can use them.
 """
 import numpy as np
 
+from .. import pipeline
 from . import layers as _layers
 from . import zmax
 
@@ -36,8 +37,38 @@ def _plane(h, w, dtype, fill=0):
     return np.full((h, w), fill, dtype=dtype)
 
 
+class _Waited:
+    """A bank (or its z maxima) of a Framebuffer: reading or setting it
+    first waits for the raster work already queued (pipeline.py), so what
+    it holds is what every pass issued before drew.  The code that queues
+    raster work takes the banks with :meth:`Framebuffer.queued` instead."""
+
+    def __set_name__(self, owner, name):
+        self.raw = "_" + name
+
+    def __get__(self, fb, owner=None):
+        if fb is None:
+            return self
+        pipeline.sync()
+        return fb.__dict__[self.raw]
+
+    def __set__(self, fb, value):
+        pipeline.sync()
+        fb.__dict__[self.raw] = value
+
+
 class Framebuffer:
     """Allocation of the banks of one window, per its configuration."""
+
+    front = _Waited()
+    back = _Waited()
+    z = _Waited()
+    stencil = _Waited()
+    accum = _Waited()
+    layers = _Waited()
+    zmax = _Waited()
+    zmax_fresh = _Waited()
+    zmax_uniform = _Waited()
 
     def __init__(self, width, height):
         self.width = width
@@ -54,14 +85,27 @@ class Framebuffer:
         self.layer_planes = dict(_layers.DEFAULT_PLANES)
         self.layers = {}            # drawmode -> colour-index bank (layers.py)
 
-    def layer(self, mode):
+    def queued(self, name):
+        """The bank ``name`` ("front", "back", "stencil", ...) or None,
+        without waiting: for the code that hands it to queued raster work
+        (pipeline.py), which runs after the work queued before it."""
+        return self.__dict__["_" + name]
+
+    def has(self, name):
+        """Whether the bank ``name`` exists (no wait: banks are made and
+        dropped only by the calling thread)."""
+        return self.__dict__["_" + name] is not None
+
+    def layer(self, mode, queued=False):
         """The bank of the pop-up, overlay or underlay framebuffer (created,
-        all 0 = transparent, on first use), or None when it has no planes."""
+        all 0 = transparent, on first use), or None when it has no planes.
+        ``queued``: for queued work, without waiting (see :meth:`queued`)."""
         if not self.layer_planes.get(mode):
             return None
-        bank = self.layers.get(mode)
+        layers = self.queued("layers") if queued else self.layers
+        bank = layers.get(mode)
         if bank is None:
-            bank = self.layers[mode] = _plane(self.height, self.width, np.uint32)
+            bank = layers[mode] = _plane(self.height, self.width, np.uint32)
         return bank
 
     def configure_layers(self, overlay, underlay):
@@ -83,11 +127,12 @@ class Framebuffer:
         self.stencil = _plane(h, w, np.uint8) if stencil_planes else None
         self.accum = np.zeros((h, w, 4), np.int16) if accum_planes else None
 
-    def ensure_z(self):
-        """The z bank, created on first use (initial contents: GD_ZMAX)."""
-        if self.z is None:
-            self.z = _plane(self.height, self.width, np.int32, ZMAX)
-        return self.z
+    def ensure_z(self, queued=False):
+        """The z bank, created on first use (initial contents: GD_ZMAX).
+        ``queued``: for queued work, without waiting (see :meth:`queued`)."""
+        if self.__dict__["_z"] is None:
+            self.__dict__["_z"] = _plane(self.height, self.width, np.int32, ZMAX)
+        return self.queued("z") if queued else self.z
 
     def z_maxima(self):
         """The per-segment z maxima (zmax.py), rebuilt if z was written

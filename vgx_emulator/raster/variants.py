@@ -66,7 +66,7 @@ def choose(st, fb, targets, *, bits, scissor, origin, pattern=None, twoside=Fals
     color = len(targets) > 0 and cmask != 0
     smax = (1 << fb.stencil_planes) - 1
     stencil = 0
-    if st.stencil_on and fb.stencil is not None and normal:
+    if st.stencil_on and fb.has("stencil") and normal:
         # 1: the bank is only read (every op ST_KEEP, or swritemask 0)
         keep = all(op == _stencil.ST_KEEP for op in st.stencil[3:6])
         stencil = 1 if keep or st.swritemask & smax == 0 else 2
@@ -111,9 +111,11 @@ def pattern_rows(pattern, orgx, width):
 def banks(key, fb, targets, pattern=None, origin=(0, 0)):
     """The banks tuple kernels take (raster.fragment): the colour targets,
     z, stencil and pattern rows (pattern_rows), with 1 x 1 dummies for what
-    ``key`` does not use.  The z bank is made at its first use."""
+    ``key`` does not use.  The z bank is made at its first use.  The banks
+    are taken without waiting for queued raster work (Framebuffer.queued):
+    the pass they are for is queued after it."""
     return (targets[0] if targets else _DUMMY_C,
             targets[1] if len(targets) > 1 else _DUMMY_C,
-            fb.ensure_z() if key.ztest else _DUMMY_Z,
-            fb.stencil if key.stencil else _DUMMY_S,
+            fb.ensure_z(queued=True) if key.ztest else _DUMMY_Z,
+            fb.queued("stencil") if key.stencil else _DUMMY_S,
             pattern_rows(pattern, origin[0], fb.width) if key.pattern else _SOLID)

@@ -66,7 +66,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numba
 import numpy as np
 
-from .. import config
+from .. import config, pipeline
 from ..jit import add32, helper, inline, kernel, sra32
 from ..raster import fragment
 from ..raster import texture as _tex
@@ -343,17 +343,23 @@ _pool = None
 
 def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     """Run a compiled walker over every band: the band_starts list cut into
-    config.SHARES_PER_THREAD shares per thread, which ``numba.get_num_threads()``
-    threads (this one and the others of a thread pool; the walker releases
-    the GIL) take in turn until none is left; small batches run on this
-    thread alone.  Each band is drawn by one
-    thread in submission order, so the pixels do not depend on the number
-    of threads or on which thread took which share.  Python threads rather
+    config.SHARES_PER_THREAD shares per thread, which the threads take in
+    turn until none is left; small batches run on one thread.  On the
+    raster thread (pipeline.py) the other thread is the program's, which
+    helps only while it waits for the raster work (pipeline.shared);
+    otherwise ``numba.get_num_threads()`` threads (this one and a thread
+    pool's; the walker releases the GIL).  Each band is drawn by one thread
+    in submission order, so the pixels do not depend on the number of
+    threads or on which thread took which share.  Python threads rather
     than a numba ``prange``: numba's parallel lowering doubled the walker's
     compile time (cold start)."""
     global _pool
     bands = band_starts(int(ip[fragment.P_SY0]), int(ip[fragment.P_SY1]))
-    n = min(numba.get_num_threads(), len(bands)) if config.PARALLEL else 1
+    raster_thread = pipeline.on_raster_thread()
+    n = 1
+    if config.PARALLEL:
+        n = min((2 if pipeline.helper_waiting() else 1) if raster_thread else
+                numba.get_num_threads(), len(bands))
     if n > 1:
         # a batch whose triangle boxes cover fewer than PARALLEL_MIN_PIXELS
         # pixels runs on this thread alone: waking the others costs more
@@ -368,15 +374,23 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     if n <= 1:
         walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
         return
+    m = min(n * config.SHARES_PER_THREAD, len(bands))
+    cuts = [len(bands) * j // m for j in range(m + 1)]
+
+    def share(k):
+        walk(bands[cuts[k]:cuts[k + 1]], setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
+
+    if raster_thread:
+        pipeline.shared(share, m)
+        return
     if _pool is None or _pool._max_workers < n - 1:
         _pool = ThreadPoolExecutor(max_workers=max(n - 1, 1), thread_name_prefix="vgx-band")
-    shares = np.array_split(bands, min(n * config.SHARES_PER_THREAD, len(bands)))
     taken = itertools.count()       # next() is atomic under the GIL
 
     def worker():
         k = next(taken)
-        while k < len(shares):
-            walk(shares[k], setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax)
+        while k < m:
+            share(k)
             k = next(taken)
 
     jobs = [_pool.submit(worker) for _ in range(n - 1)]

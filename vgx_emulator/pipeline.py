@@ -1,0 +1,188 @@
+"""The Raster Subsystem's own thread: geometry and raster work pipelined.
+
+On the VGX the Geometry Subsystem hands each primitive to the Raster
+Subsystem through a FIFO and goes on with the next; the host program and
+the geometry engines run ahead of the pixels.  The emulator does the same
+with one worker thread: ``VGX._flush`` runs the geometry of a batch on the
+calling thread and queues its scan conversion (triangle setup, the walker,
+lines, points) here, and the clears queue their fills, so the program's
+Python calls and the next batch's geometry run while the walker of the last
+one fills pixels (the numba kernels release the GIL).  Work runs one item
+at a time in the order it was queued, so the pixels are those of running
+it at once.
+
+Everything that reads or writes a bank's contents outside this thread waits
+first (:func:`sync`): the Framebuffer's banks and z maxima are attributes
+that wait when read or set (framebuffer.Framebuffer), so a read-back, a
+swap, a reconfiguration, a picture or a test reading ``fb.back`` sees every
+pass queued before it.  Only the code that queues work takes the banks
+without waiting (it hands them to the work).
+
+``config.PIPELINE`` off (environment ``VGX_PIPELINE=0`` or
+``VGX_PARALLEL=0``, or a one-core machine) or one numba thread
+(``numba.set_num_threads(1)`` on the calling thread) runs every item at
+once on the calling thread instead.  A failure inside queued work is raised
+by the next :func:`sync` (the call that waits), with its own traceback.
+"""
+import threading
+from collections import deque
+
+import numba
+
+from . import config
+
+_lock = threading.Condition()
+_items = deque()
+_state = {"sent": 0, "done": 0, "error": None, "thread": None, "ident": None,
+          "offer": None, "waits": 0, "waiting": 0}
+
+
+class Shares:
+    """Work of one pass that a waiting thread may help with: ``run(k)``
+    for k in 0 .. n-1, each k taken by exactly one thread (the triangle
+    walker's shares of bands: scan.triangles.run_bands).  The raster
+    thread offers them (:func:`shared`); a thread waiting in :func:`sync`
+    takes shares until none is left, so while the program waits its core
+    fills pixels too, and while it runs Python the raster thread works
+    alone."""
+
+    def __init__(self, run, n):
+        self.run, self.n = run, n
+        self.next = iter(range(n)).__next__     # atomic under the GIL
+        self.helpers = 0
+        self.closed = False
+        self.error = None
+
+    def take(self):
+        """Run shares until none is left (StopIteration ends it)."""
+        try:
+            while True:
+                self.run(self.next())
+        except StopIteration:
+            self.closed = True          # no share left: nothing for a helper
+
+    def help(self):
+        with _lock:
+            if self.closed:
+                return
+            self.helpers += 1
+        try:
+            self.take()
+        except BaseException as e:      # the pass's failure (raised by shared())
+            self.error = self.error or e
+        finally:
+            with _lock:
+                self.helpers -= 1
+                _lock.notify_all()
+
+
+def shared(run, n):
+    """Run ``run(k)`` for every k < n on the raster thread, offering the
+    shares to a thread waiting in :func:`sync`; returns when all are done."""
+    offer = Shares(run, n)
+    with _lock:
+        _state["offer"] = offer
+        _lock.notify_all()
+    try:
+        offer.take()
+    finally:
+        with _lock:
+            offer.closed = True
+            while offer.helpers:
+                _lock.wait()
+            _state["offer"] = None
+    if offer.error is not None:
+        raise offer.error
+
+
+def _worker():
+    s = _state
+    s["ident"] = threading.get_ident()
+    while True:
+        with _lock:
+            while not _items:
+                _lock.wait()
+            fn, args = _items[0]
+        try:
+            fn(*args)
+        except BaseException as e:      # raised by the next sync()
+            if s["error"] is None:
+                s["error"] = e
+        with _lock:
+            _items.popleft()
+            s["done"] += 1
+            _lock.notify_all()
+
+
+def submit(fn, *args):
+    """Queue ``fn(*args)`` for the raster thread (or run it now when
+    config.PIPELINE is off or this is the raster thread)."""
+    s = _state
+    if threading.get_ident() == s["ident"]:
+        fn(*args)
+        return
+    if not config.PIPELINE or numba.get_num_threads() < 2:
+        sync()                  # (after what was queued while it was on)
+        fn(*args)
+        return
+    if s["thread"] is None:
+        t = threading.Thread(target=_worker, name="vgx-raster", daemon=True)
+        s["thread"] = t
+        t.start()
+    with _lock:
+        _items.append((fn, args))
+        s["sent"] += 1
+        _lock.notify_all()
+
+
+def helper_waiting():
+    """Whether a thread is waiting in :func:`sync` (and would take shares
+    of a pass: :func:`shared`).  While none waits the raster thread walks a
+    pass in one piece: a thread coming back from a kernel to take its next
+    share waits for the GIL while the program runs Python."""
+    return _state["waiting"] > 0
+
+
+def on_raster_thread():
+    """Whether this is the raster thread (its passes walk their bands alone:
+    the calling thread is the other core's work)."""
+    return threading.get_ident() == _state["ident"]
+
+
+def waits():
+    """How many times a thread has waited for queued work (sync with work
+    pending): the tests check that drawing a frame waits only where it must."""
+    return _state["waits"]
+
+
+def pending():
+    """Whether queued work has not finished."""
+    return _state["sent"] != _state["done"]
+
+
+def sync():
+    """Wait until every queued item has run; raise the first failure of one.
+    A no-op on the raster thread itself (its items see their own banks)."""
+    s = _state
+    if s["sent"] != s["done"]:
+        if threading.get_ident() == s["ident"]:
+            return
+        s["waits"] += 1
+        with _lock:
+            s["waiting"] += 1
+            try:
+                while s["sent"] != s["done"]:
+                    offer = s["offer"]
+                    if offer is not None and not offer.closed:
+                        _lock.release()
+                        try:
+                            offer.help()
+                        finally:
+                            _lock.acquire()
+                    else:
+                        _lock.wait()
+            finally:
+                s["waiting"] -= 1
+    if s["error"] is not None:
+        e, s["error"] = s["error"], None
+        raise e
