@@ -357,7 +357,7 @@ class VGX:
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
             pipeline.submit(_raster_pass, win.fb, work, key, planes, ip, cull,
-                            not st.subpixel, tex, zfar)
+                            not st.subpixel, tex, zfar, scan.setup_batch(work, key, ip, cull))
             if self.trace_hook is not None:
                 self.trace_hook(self, win, "draw")
         if b.open is not None:
@@ -917,9 +917,10 @@ class VGX:
         return img
 
 
-def _raster_pass(fb, work, key, planes, ip, cull, closed_lines, tex, zfar):
+def _raster_pass(fb, work, key, planes, ip, cull, closed_lines, tex, zfar, setup):
     """The Raster Subsystem's part of a batch (queued by VGX._flush on the
-    raster thread, pipeline.py): the z maxima when the pass may skip spans
+    raster thread, pipeline.py; its triangle setup, scan.setup_batch, made
+    by the thread that queued it): the z maxima when the pass may skip spans
     against them (zfar: VGX._z_maxima_bound), scan conversion, and the
     maxima marked stale when the pass changed a stored z (the walker
     reports it: a redraw with ZF_LEQUAL or ZF_EQUAL of the surfaces already
@@ -928,7 +929,7 @@ def _raster_pass(fb, work, key, planes, ip, cull, closed_lines, tex, zfar):
     if zfar is not None and not (fb.zmax_uniform is not None and fb.zmax_uniform >= zfar):
         zmaxima = fb.z_maxima()     # (uniform at the far end: no span can fail)
     ip[fragment.P_ZMAX] = zmaxima is not None
-    scan.scan_batch(work, key, planes, ip, cull, closed_lines, tex, zmaxima)
+    scan.scan_batch(work, key, planes, ip, cull, closed_lines, tex, zmaxima, setup)
     if key.zwrite and (work.klass != FILLED or ip[fragment.P_ZCHANGED]):
         fb.z_written()
 

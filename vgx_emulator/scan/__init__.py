@@ -46,18 +46,30 @@ def texture_inputs(work, texture, tparams):
     return (texture.texels, texture.info, tsel, tparams)
 
 
-def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None):
+def setup_batch(work, key, ip, cull):
+    """Triangle setup of a batch of filled primitives (scan.triangles.
+    setup_triangles) for the raster ``key`` and scissor in ``ip``, or None
+    (lines, points, no triangle).  Run by the thread that queues the pass
+    (pipeline.py), so that the raster thread only walks."""
+    if work.klass != FILLED or work.tris is None or len(work.tris) == 0:
+        return None
+    return setup_triangles(work.X, work.Y, work.Z, work.C, work.CB, work.prov, work.tris,
+                           cull, ip[0], ip[1], ip[2], ip[3],
+                           interp=key.gouraud and key.color and not key.texture,
+                           cmode=key.cmode, twoside=key.twoside)
+
+
+def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None, setup=None):
     """Rasterize one WindowWork with the raster ``key`` and parameters ``ip``;
     ``tex`` = (Texture, tparams) when texturing; ``zmaxima``: the z bank's
     per-segment maxima when ip[P_ZMAX] lets triangles skip spans against
-    them (framebuffer/zmax.py)."""
+    them (framebuffer/zmax.py); ``setup``: setup_batch's result, when it
+    was made already."""
     if work.klass == FILLED:
         if work.tris is None or len(work.tris) == 0:
             return 0
-        setup = setup_triangles(work.X, work.Y, work.Z, work.C, work.CB, work.prov, work.tris,
-                                cull, ip[0], ip[1], ip[2], ip[3],
-                                interp=key.gouraud and key.color and not key.texture,
-                                cmode=key.cmode, twoside=key.twoside)
+        if setup is None:
+            setup = setup_batch(work, key, ip, cull)
         if key.texture:
             tk = texture_inputs(work, tex[0], tex[1])
             tc = work.TC
