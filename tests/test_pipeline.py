@@ -155,6 +155,7 @@ def test_waiting_thread_takes_shares_each_once(monkeypatch):
     raster thread and by the thread waiting in sync."""
     monkeypatch.setattr(config, "PIPELINE", True)
     ran, who = [], set()
+    started = threading.Event()
 
     def run(k):
         time.sleep(0.002)
@@ -162,15 +163,37 @@ def test_waiting_thread_takes_shares_each_once(monkeypatch):
         who.add(threading.get_ident())
 
     def task():
+        started.set()
         deadline = time.perf_counter() + 5
         while not pipeline.helper_waiting() and time.perf_counter() < deadline:
             time.sleep(0.001)
         pipeline.shared(run, 60)
 
     pipeline.submit(task)
+    assert started.wait(5)                 # the raster thread runs it (not this one)
     pipeline.sync()
     assert sorted(ran) == list(range(60))
     assert threading.get_ident() in who and len(who) == 2
+
+
+def test_a_waiting_thread_runs_the_items_not_started(monkeypatch):
+    """Items the raster thread has not started when the program waits are
+    run by the waiting thread itself, in the order they were queued.  (A
+    pipeline whose raster thread never wakes: fresh queue, lock and state.)"""
+    import collections
+    monkeypatch.setattr(config, "PIPELINE", True)
+    monkeypatch.setattr(pipeline, "_lock", threading.Condition())
+    monkeypatch.setattr(pipeline, "_items", collections.deque())
+    monkeypatch.setattr(pipeline, "_state", dict(pipeline._state, sent=0, done=0, running=False,
+                                                 error=None, thread=object(), offer=None,
+                                                 waiting=0))
+    order = []
+    for k in range(5):
+        pipeline.submit(lambda k=k: order.append((k, threading.get_ident())))
+    assert pipeline.pending() and not order
+    pipeline.sync()
+    assert order == [(k, threading.get_ident()) for k in range(5)]
+    assert not pipeline.pending()
 
 
 def test_one_thread_or_pipeline_off_runs_at_once(open_window, monkeypatch):

@@ -33,8 +33,9 @@ from . import config
 
 _lock = threading.Condition()
 _items = deque()
-_state = {"sent": 0, "done": 0, "error": None, "thread": None, "ident": None,
-          "offer": None, "waits": 0, "waiting": 0}
+_state = {"sent": 0, "done": 0, "running": False, "error": None, "thread": None,
+          "ident": None, "offer": None, "waits": 0, "waiting": 0}
+_inside = threading.local()     # .item: this thread is running a queued item
 
 
 class Shares:
@@ -95,30 +96,42 @@ def shared(run, n):
         raise offer.error
 
 
-def _worker():
+def _run_head():
+    """Run the item at the head of the queue (called with _lock held and
+    no item running; returns with it held): items run one at a time, in
+    the order they were queued, whichever thread runs them."""
     s = _state
-    s["ident"] = threading.get_ident()
-    while True:
-        with _lock:
-            while not _items:
+    fn, args = _items.popleft()
+    s["running"] = True
+    _lock.release()
+    _inside.item = True
+    try:
+        fn(*args)
+    except BaseException as e:      # raised by the next sync()
+        if s["error"] is None:
+            s["error"] = e
+    finally:
+        _inside.item = False
+        _lock.acquire()
+        s["running"] = False
+        s["done"] += 1
+        _lock.notify_all()
+
+
+def _worker():
+    _state["ident"] = threading.get_ident()
+    with _lock:
+        while True:
+            while not _items or _state["running"]:
                 _lock.wait()
-            fn, args = _items[0]
-        try:
-            fn(*args)
-        except BaseException as e:      # raised by the next sync()
-            if s["error"] is None:
-                s["error"] = e
-        with _lock:
-            _items.popleft()
-            s["done"] += 1
-            _lock.notify_all()
+            _run_head()
 
 
 def submit(fn, *args):
     """Queue ``fn(*args)`` for the raster thread (or run it now when
-    config.PIPELINE is off or this is the raster thread)."""
+    config.PIPELINE is off, or inside a queued item)."""
     s = _state
-    if threading.get_ident() == s["ident"]:
+    if getattr(_inside, "item", False):
         fn(*args)
         return
     if not config.PIPELINE or numba.get_num_threads() < 2:
@@ -144,8 +157,8 @@ def helper_waiting():
 
 
 def on_raster_thread():
-    """Whether this is the raster thread (its passes walk their bands alone:
-    the calling thread is the other core's work)."""
+    """Whether this is the raster thread (its passes share their bands only
+    with a thread waiting in sync: the other core runs the program)."""
     return threading.get_ident() == _state["ident"]
 
 
@@ -162,10 +175,14 @@ def pending():
 
 def sync():
     """Wait until every queued item has run; raise the first failure of one.
-    A no-op on the raster thread itself (its items see their own banks)."""
+    The waiting thread works meanwhile: it runs the next item itself when
+    the raster thread has not started it (a pass queued just before a wait
+    would otherwise wait for that thread to wake) and takes shares of the
+    one running (:func:`shared`).  A no-op inside a queued item (the item
+    sees the banks as the items before it left them)."""
     s = _state
     if s["sent"] != s["done"]:
-        if threading.get_ident() == s["ident"]:
+        if getattr(_inside, "item", False):
             return
         s["waits"] += 1
         with _lock:
@@ -173,7 +190,9 @@ def sync():
             try:
                 while s["sent"] != s["done"]:
                     offer = s["offer"]
-                    if offer is not None and not offer.closed:
+                    if _items and not s["running"]:
+                        _run_head()
+                    elif offer is not None and not offer.closed:
                         _lock.release()
                         try:
                             offer.help()
