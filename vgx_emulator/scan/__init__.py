@@ -78,7 +78,7 @@ def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None
         _tris.triangle_kernel(key)(setup, work.X, work.Y, work.Z, work.C, work.CB,
                                    work.prov, planes, ip, tc, tk,
                                    _NO_ZMAX if zmaxima is None else zmaxima)
-        return int(setup[2].sum())
+        return _tris.drawn(setup)
     if work.klass == LINES:
         if len(work.seg0) == 0:
             return 0
