@@ -323,7 +323,9 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         work.dropped = int(np.count_nonzero(fate == clip.DROPPED))
         inside = fate == clip.INSIDE
         cross = np.nonzero(fate == clip.CROSSING)[0]
-        work.tris, work.prov = tris[inside], prov[inside]
+        # (every triangle inside, the common case: the assembled arrays
+        # themselves, which nothing after assembly writes)
+        work.tris, work.prov = (tris, prov) if inside.all() else (tris[inside], prov[inside])
         extra = ([back] if back is not None else []) + ([tc] if tc is not None else [])
         if len(cross):
             verts = np.concatenate([clp, col] + extra + ([ud] if nuser else []), axis=1)
