@@ -230,10 +230,13 @@ STEPS = {"spheres": [("four spheres", _spheres)],
 # parent
 
 def run(workload, cache):
-    # VGX_PIPELINE=0: every kernel compiled on the calling thread, so that
-    # each compile is timed apart (the raster thread would compile its own
-    # kernels while this one compiles others, and their timings would nest)
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), PYTHONPATH=str(ROOT), VGX_PIPELINE="0")
+    # VGX_PIPELINE=0, VGX_PRECOMPILE=0: every kernel compiled on the calling
+    # thread of this one process, so that each compile is timed apart (the
+    # raster thread would compile its own kernels while this one compiles
+    # others, and their timings would nest; vgx_emulator/precompile.py's
+    # second process would compile the walker meanwhile)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), PYTHONPATH=str(ROOT), VGX_PIPELINE="0",
+               VGX_PRECOMPILE="0")
     t = time.perf_counter()
     r = subprocess.run([sys.executable, "-c", CHILD % dict(root=str(ROOT), workload=workload)],
                        capture_output=True, text=True, env=env, cwd=ROOT)

@@ -10,6 +10,7 @@ from . import menus
 from .menus import script as script_menus
 from .planes import planes
 from .trace import Trace, trace_program
+from . import precompile as _precompile
 
 __all__ = ["VGX", "GLError", "VGXWarning", "run_program", "save_png", "machine",
            "set_error_mode", "error_mode", "window_image", "menus", "script_menus",
@@ -36,3 +37,6 @@ def save_png(path, gid=None):
     """Save what a window shows (default: the current window) as a PNG."""
     from .display.png import write_png
     return write_png(path, window_image(gid))
+
+
+_precompile.start_if_cold()     # a cold numba cache: the longest compiles in a second process
