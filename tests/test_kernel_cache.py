@@ -3,7 +3,9 @@ and a damaged cache is compiled again, not fatal."""
 import subprocess
 import sys
 
-SCRIPT = r"""
+#: a numba listener that records the qualified name of every kernel a
+#: process compiles (a load from the disk cache is not a compile)
+LISTEN = r"""
 import numba.core.event as ev
 import numpy as np
 
@@ -21,6 +23,9 @@ class Compiled(ev.Listener):
 
 compiled = Compiled()
 ev.register("numba:compile", compiled)
+"""
+
+SCRIPT = LISTEN + r"""
 from irisgl import *
 prefsize(32, 32); winopen("x"); RGBmode(); doublebuffer(); stensize(4); gconfig()
 ortho2(-0.5, 31.5, -0.5, 31.5)

@@ -7,21 +7,9 @@ import sys
 from pathlib import Path
 
 import pytest
+from test_kernel_cache import LISTEN
 
 ROOT = Path(__file__).resolve().parent.parent
-
-LISTEN = r"""
-import numba.core.event as ev
-class Compiled(ev.Listener):
-    def __init__(self):
-        self.names = []
-    def on_start(self, event):
-        self.names.append(event.data["dispatcher"].py_func.__qualname__)
-    def on_end(self, event):
-        pass
-compiled = Compiled()
-ev.register("numba:compile", compiled)
-"""
 
 DRAW = LISTEN + r"""
 from vgx_emulator.runner import run_program
