@@ -3,11 +3,11 @@
 On the VGX the Geometry Subsystem hands each primitive to the Raster
 Subsystem through a FIFO and goes on with the next; the host program and
 the geometry engines run ahead of the pixels.  The emulator does the same
-with one worker thread: ``VGX._flush`` runs the geometry of a batch on the
-calling thread and queues its scan conversion (triangle setup, the walker,
-lines, points) here, and the clears queue their fills, so the program's
-Python calls and the next batch's geometry run while the walker of the last
-one fills pixels (the numba kernels release the GIL).  Work runs one item
+with one worker thread: ``VGX._flush`` runs the geometry and triangle setup
+of a batch on the calling thread and queues the rest of its pass (the z
+maxima, the walker, lines, points) here, and the clears and acbuf queue
+their kernels, so the program's Python calls and the next batch's geometry
+run while the walker of the last one fills pixels (the numba kernels release the GIL).  Work runs one item
 at a time in the order it was queued, so the pixels are those of running
 it at once.
 
@@ -48,7 +48,7 @@ class Shares:
     alone."""
 
     def __init__(self, run, n):
-        self.run, self.n = run, n
+        self.run = run
         self.next = iter(range(n)).__next__     # atomic under the GIL
         self.helpers = 0
         self.closed = False

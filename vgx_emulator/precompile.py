@@ -94,9 +94,9 @@ def warm(keys=None):
     C = np.full((3, 4), 128.0)
     work = WindowWork(klass=FILLED, X=X, Y=Y, Z=np.zeros(3), C=C, CB=C,
                       tris=np.array([[0, 1, 2]], np.int64), prov=np.array([2], np.int64))
+    _, ip = variants.choose(st, fb, targets, bits=0xFFFFFFFF, scissor=(0, 7, 0, 7),
+                            origin=(0, 0))
     for key in keys or [common_key()]:
-        _, ip = variants.choose(st, fb, targets, bits=0xFFFFFFFF, scissor=(0, 7, 0, 7),
-                                origin=(0, 0))
         planes = variants.banks(key, fb, targets)
         scan.scan_batch(work, key, planes, ip, 0, False, None, None,
                         _no_setup(work, key, ip))
