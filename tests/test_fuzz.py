@@ -106,7 +106,7 @@ def test_a_crashing_batch_is_reported_with_its_seed_and_batch(monkeypatch):
 
 
 def test_banks_differing_between_thread_counts_are_a_finding(monkeypatch):
-    def worker(cmd, timeout, threads):
+    def worker(cmd, timeout, threads, general=None):
         return dict(primitives=10, frames=2, stats={}, findings=[],
                     hashes=["a", "b" if threads == 1 else "c"])
     monkeypatch.setattr(fuzz, "_run_worker", worker)
@@ -114,3 +114,21 @@ def test_banks_differing_between_thread_counts_are_a_finding(monkeypatch):
                  timeout=60, misuse=None)
     assert [f["finding"] for f in s["findings"]] == [
         "banks differ between a run on 2 threads and a run on 1 thread(s) at frame 1"]
+
+
+def test_banks_differing_on_the_general_variants_are_a_finding(monkeypatch):
+    """The recheck's third run draws on the general kernel variants
+    (VGX_GENERAL=always); other banks there are a finding."""
+    calls = []
+
+    def worker(cmd, timeout, threads, general=None):
+        calls.append((threads, general))
+        return dict(primitives=10, frames=2, stats={}, findings=[],
+                    hashes=["a", "x" if general == "always" else "b"])
+    monkeypatch.setattr(fuzz, "_run_worker", worker)
+    s = fuzz.run(seed=1, primitives=10, batch=10, states=1, jobs=1, recheck_every=1,
+                 timeout=60, misuse=None)
+    assert calls == [(2, None), (1, None), (2, None), (2, "always")]
+    assert [f["finding"] for f in s["findings"]] == [
+        "banks differ between a run on 2 threads and a run on the general kernel variants "
+        "(VGX_GENERAL=always) at frame 1"]

@@ -38,13 +38,15 @@ def _draw(cache):
 
 
 def test_the_warmed_walker_is_the_one_a_pass_loads(tmp_path):
-    """warm() into an empty cache, then four spheres: the walker comes from
-    the cache (warm gave it the argument types of a real pass), everything
-    else is compiled (the cache was otherwise cold), and the picture is the
-    one drawn with a cold cache."""
+    """warm() of the common key alone (without exercise(), which draws and
+    so compiles setup too) into an empty cache, then four spheres: the
+    walker comes from the cache (warm gave it the argument types of a real
+    pass), everything else is compiled (the cache was otherwise cold), and
+    the picture is the one drawn with a cold cache."""
     cold_sum, cold_compiled = _draw(tmp_path / "cold")
     assert WALKER in cold_compiled and SETUP in cold_compiled
-    _python("from vgx_emulator.precompile import warm; warm()", tmp_path / "warm",
+    _python("from vgx_emulator.precompile import warm, common_key; warm([common_key()])",
+            tmp_path / "warm",
             VGX_PRECOMPILE="0")
     warm_sum, warm_compiled = _draw(tmp_path / "warm")
     assert WALKER not in warm_compiled
@@ -54,14 +56,16 @@ def test_the_warmed_walker_is_the_one_a_pass_loads(tmp_path):
 
 def test_a_cold_cache_starts_the_second_process_once(tmp_path):
     """import vgx_emulator with an empty cache starts the second process
-    (which ends cleanly and leaves the walker in the cache); with
+    (which ends cleanly and leaves the walker and, from exercise(), setup
+    in the cache); with
     VGX_PRECOMPILE=0, or once the cache is warm, nothing is started."""
     probe = ("import vgx_emulator, vgx_emulator.precompile as p\n"
              "q = p._started[0] if p._started else None\n"
              "print(None if q is None else q.wait(600))\n"
              "print(p.cache_is_cold())\n")
     assert _python(probe, tmp_path / "c", VGX_PRECOMPILE="0") == ["None", "True"]
-    assert _python(probe, tmp_path / "c") == ["0", "True"]     # started; setup not compiled
+    # started; its exercise() drew, so setup is in the cache too
+    assert _python(probe, tmp_path / "c") == ["0", "False"]
     _, compiled = _draw(tmp_path / "c")
     assert WALKER not in compiled                                # the second process's walker
     assert _python(probe, tmp_path / "c") == ["None", "False"]  # warm now: nothing started

@@ -97,3 +97,9 @@ MAX_POLYGON_VERTICES = 256
 #: Error mode: "strict" raises GLError, "lenient" prints "GL: ..." on stderr
 #: and ignores the call (docs/semantics.md §14).  VGX_ERRORS=lenient selects it.
 ERROR_MODE = os.environ.get("VGX_ERRORS", "strict")
+
+#: passes of a raster state drawn on its family's general variant before a
+#: second process is asked to compile the state's own (specialise.py): a
+#: state used once (a figure, a title) is not worth the compile, one drawn
+#: every frame is
+SPECIALISE_AFTER = 3

@@ -25,7 +25,8 @@ infinite, 1e38, w <= 0, tiny, or slivers.  After every frame:
 - values in range: z within the 24-bit VGX range, stencil within its planes,
   colour-map indices within 12 bits;
 - a hash of every bank, which the parent compares between a run on 1 and on 2
-  threads and between two runs (``--recheck-every``).
+  threads, between two runs, and with a run on the general kernel variants
+  (``VGX_GENERAL=always``, vgx_emulator/specialise.py) (``--recheck-every``).
 
 Misuse (``misuse`` worker): for each call of ``irisgl._current.API``, wrong
 arities and, argument by argument, None, an object, a complex, a dict, a
@@ -690,8 +691,10 @@ def _worker_cmd(kind, seed, index, count, states, threads, quick=False):
     return cmd + (["--quick"] if quick else [])
 
 
-def _run_worker(cmd, timeout, threads):
+def _run_worker(cmd, timeout, threads, general=None):
     env = dict(os.environ, NUMBA_NUM_THREADS=str(max(threads, 2)))
+    if general is not None:
+        env["VGX_GENERAL"] = general
     t0 = time.perf_counter()
     try:
         r = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
@@ -719,17 +722,19 @@ def run(seed, primitives, batch, states, jobs, recheck_every, timeout, misuse, l
         res = _run_worker(_worker_cmd("draw", seed, k, count, states, 2), timeout, 2)
         res["index"] = k
         if "error" not in res and recheck_every and k % recheck_every == 0:
-            for threads in (1, 2):
+            for threads, general in ((1, None), (2, None), (2, "always")):
                 again = _run_worker(_worker_cmd("draw", seed, k, count, states, threads),
-                                    timeout, threads)
+                                    timeout, threads, general)
                 if "error" in again:
                     res.setdefault("recheck_errors", []).append(again)
                 elif again["hashes"] != res["hashes"]:
                     bad = next(i for i, (a, b) in enumerate(zip(again["hashes"], res["hashes"]))
                                if a != b) if len(again["hashes"]) == len(res["hashes"]) else -1
+                    other = (f"{threads} thread(s)" if general is None else
+                             "the general kernel variants (VGX_GENERAL=always)")
                     res["findings"].append(
-                        f"banks differ between a run on 2 threads and a run on {threads} "
-                        f"thread(s) at frame {bad}")
+                        f"banks differ between a run on 2 threads and a run on {other} "
+                        f"at frame {bad}")
             res["rechecked"] = True
         return res
 
@@ -781,7 +786,8 @@ def markdown(summary):
     errs = "; ".join(f"{k[8:]}: {v}" for k, v in sorted(st.items()) if k.startswith("GLError"))
     lines = [f"- seed {s['seed']}: {s['primitives']} primitives in {s['frames']} frames, "
              f"{s['batches']} batches of {s['batch']} (a subprocess each), {s['states']} "
-             f"raster-state recipes, {s['rechecked']} batches run again on 1 and on 2 threads; "
+             f"raster-state recipes, {s['rechecked']} batches run again on 1 and on 2 threads "
+             f"and on the general kernel variants; "
              f"{s['seconds']:.0f} s",
              f"- {st.get('vertices', 0)} vertices in bgn/end primitives; by kind: {kinds}",
              f"- {st.get('vgxwarnings', 0)} VGXWarnings (dropped non-finite primitives, each "
@@ -816,7 +822,8 @@ def main(argv=None):
                     help="raster-state recipes drawn from (default 16)")
     ap.add_argument("--jobs", type=int, default=1, help="batches run at once (default 1)")
     ap.add_argument("--recheck-every", type=int, default=10,
-                    help="every K-th batch is run again on 1 and on 2 threads (0: never)")
+                    help="every K-th batch is run again on 1 and on 2 threads and on the "
+                         "general kernel variants (0: never)")
     ap.add_argument("--timeout", type=int, default=1200, help="seconds before a batch hangs")
     ap.add_argument("--misuse", choices=("quick", "full"), default=None,
                     help="also give every call wrong arguments")

@@ -875,8 +875,9 @@ class VGX:
                            gouraud=False, twoside=False)
         if not key.color:
             return
-        pixel_kernel(key)(np.ascontiguousarray(words), x1, y1, float(zoom[0]),
-                          float(zoom[1]), planes, ip)
+        words = np.ascontiguousarray(words)
+        scan.run(pixel_kernel, "pixel", key, planes, ip,
+                 lambda planes, ip: (words, x1, y1, float(zoom[0]), float(zoom[1]), planes, ip))
 
     def char_pixels(self, win, xs, ys, z):
         """charstr(3G): glyph pixels (window x, y int arrays) at one window z,
@@ -884,7 +885,6 @@ class VGX:
         (writemasks, z test and write, stencil, blend); clipped to scrmask ∩
         window, never to the viewport; patterns do not apply."""
         from .raster import fragment as F
-        from .scan.lines import point_kernel
         self._finish(win)
         st = win.st
         sc = _intersect(st.scrmask, (0, win.width - 1, 0, win.height - 1))
@@ -901,7 +901,7 @@ class VGX:
         pts[:, 3:7] = st.colour
         if st.scrbox_mode == 1:               # scrbox(3G) tracks characters too
             scrbox.track_xy(st, pts[:, :2], sc)
-        point_kernel(key)(pts, planes, ip)
+        scan.run_points(key, pts, planes, ip)
 
     # ------------------------------------------------------------------
     # display

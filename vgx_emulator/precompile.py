@@ -15,6 +15,13 @@ had the other process not finished, this one compiles it as it would have.
 Nothing but the disk cache passes between them, so a failure of the
 second process costs only its time.
 
+Having saved the walker, the second process lowers its priority and goes
+on (:func:`exercise`) to compile what the program is likely to need next:
+the general variants of the walker, lines, points and pixel writes
+(vgx_emulator/specialise.py), on which a raster state whose own kernel is
+not compiled yet runs at once, and the kernels of the primitives four
+spheres does not draw (lines, points, rectangles, text, pixel writes).
+
 It runs once per cache (a warm cache starts nothing), only with more than
 one core, and never from itself; ``VGX_PRECOMPILE=0`` turns it off (the
 compile-cost benchmark does, to time each kernel apart).
@@ -66,6 +73,11 @@ def start_if_cold():
     return p
 
 
+def running():
+    """Whether the second process of this cold start is still compiling."""
+    return bool(_started and _started[0] is not None and _started[0].poll() is None)
+
+
 def common_key():
     """The raster key of a z-buffered, Gouraud-shaded RGB pass with colour
     and z writes (raster.variants.RasterKey)."""
@@ -76,17 +88,20 @@ def common_key():
 
 
 def warm(keys=None):
-    """Compile the walker of each raster key with the argument types a pass
-    gives it (one triangle in an 8 x 8 bank set), so that it is saved to the
-    disk cache.  (Not triangle setup: the first process compiles it before
-    this one could, as it needs it first.)"""
+    """Compile the walker of each raster key (by default the common one)
+    with the argument types a pass gives it (one triangle, not drawn, in an
+    8 x 8 bank set), so that it is saved to the disk cache; then, by
+    default, :func:`exercise`."""
     from .framebuffer import Framebuffer
     from .geometry import WindowWork
     from .geometry.batch import FILLED
     from .raster import variants
-    from . import scan
+    from . import scan, specialise
     from .state import WindowState
+    specialise.MODE = "0"               # each key's own walker
     fb = Framebuffer(8, 8)
+    if keys is None:
+        specialise.lower_priority()
     st = WindowState(8, 8)
     targets = [fb.queued("front")]
     X = np.array([1, 7, 1], np.int64) << config.SUBPIXEL_BITS
@@ -100,6 +115,72 @@ def warm(keys=None):
         planes = variants.banks(key, fb, targets)
         scan.scan_batch(work, key, planes, ip, 0, False, None, None,
                         _no_setup(work, key, ip))
+    if keys is None:
+        exercise()
+
+
+def exercise():
+    """Draw, in a small window and with every pass on its family's general
+    variant (specialise.MODE "always"), what programs draw soon after their
+    first picture: a Gouraud and a flat z-buffered polygon, lines, points,
+    lrectwrite, rectcopy, text, a stencil clear, a textured polygon, then
+    the same in colour-map mode.  That compiles the general variants of the
+    walker, of lines, points and pixel writes (RGB, textured and colour
+    map), on which a raster state whose own kernels are not compiled yet
+    runs (vgx_emulator/specialise.py), and the kernels of those primitives
+    that four spheres does not use, with the argument types of real calls."""
+    import irisgl as gl
+    from . import specialise
+    specialise.MODE = "always"
+    gl.prefsize(16, 16)
+    gl.winopen("precompile")
+    gl.RGBmode()
+    gl.stensize(8)
+    gl.gconfig()
+    _exercise_window(gl, lambda i: gl.c3f([(1, 0, 0), (0, 1, 0), (0, 0, 1)][i]))
+    gl.sclear(0)
+    gl.texdef2d(1, 4, 2, 2, np.full(4, 0xffffffff, np.uint32), 0, [gl.TX_NULL])
+    gl.tevdef(1, 0, [gl.TV_MODULATE, gl.TV_NULL])
+    gl.texbind(gl.TX_TEXTURE_0, 1)
+    gl.tevbind(gl.TV_ENV0, 1)
+    gl.bgnpolygon()
+    for s, t in ((0, 0), (1, 0), (1, 1)):
+        gl.t2f((s, t))
+        gl.v2f((1 + 12 * s, 1 + 12 * t))
+    gl.endpolygon()
+    gl.texbind(gl.TX_TEXTURE_0, 0)
+    gl.lrectread(0, 0, 0, 0)
+    gl.cmode()
+    gl.gconfig()
+    _exercise_window(gl, lambda i: gl.color(3 + i))
+    gl.gexit()
+
+
+def _exercise_window(gl, colour):
+    """exercise's drawing in one mode; ``colour(i)``: vertex i's colour call."""
+    gl.ortho2(-0.5, 15.5, -0.5, 15.5)
+    gl.zbuffer(1)
+    gl.czclear(0, gl.getgdesc(gl.GD_ZMAX))
+    for shade in (gl.GOURAUD, gl.FLAT):
+        gl.shademodel(shade)
+        gl.bgnpolygon()
+        for i, v in enumerate(((1, 1), (14, 2), (5, 13))):
+            colour(i)
+            gl.v2f(v)
+        gl.endpolygon()
+        gl.rectf(2, 2, 9, 9)
+        gl.move2(1, 1)
+        gl.draw2(12, 9)
+        gl.bgnpoint()
+        gl.v2f((3, 3))
+        gl.endpoint()
+        gl.gflush()
+    gl.lrectwrite(0, 0, 1, 1, np.zeros(4, np.uint32))
+    gl.rectcopy(0, 0, 3, 3, 8, 8)
+    gl.cmov2(2, 2)
+    gl.charstr("Ab")
+    gl.gflush()
+    gl.lrectread(0, 0, 0, 0)
 
 
 def _no_setup(work, key, ip):

@@ -147,9 +147,11 @@ def colour_out(old, word, blend, logic, cmask, cmode, bterms, prm):
     stored ``old``, then the writemask."""
     old = np.int64(old)
     new = np.int64(word)
+    # (a logicop other than LO_SRC replaces blending: variants.choose never
+    # keys both; the general variant has both, one of them neutral)
     if logic:
         new = _blend.logic_op(prm[P_LOGICOP], new, old)
-    elif blend and not cmode:
+    if blend and not cmode:
         new = _blend.blend_words(bterms[0], bterms[1], new, old)
     if cmask:
         m = prm[P_CMASK]

@@ -119,3 +119,94 @@ def banks(key, fb, targets, pattern=None, origin=(0, 0)):
             fb.ensure_z(queued=True) if key.ztest else _DUMMY_Z,
             fb.queued("stencil") if key.stencil else _DUMMY_S,
             pattern_rows(pattern, origin[0], fb.width) if key.pattern else _SOLID)
+
+
+def general(key):
+    """The general variant of ``key``'s family: every per-fragment stage
+    compiled in (z test and write, stencil test and write, the generic
+    blend, logicop, afunction, pattern, writemask, two colour buffers),
+    with the fields that change what setup computes or how a colour is
+    made kept as ``key`` has them (Gouraud, colour-map mode, two-sided,
+    texture).  Run with the banks and parameters of :func:`neutral`, it
+    draws exactly what ``key``'s own variant draws: one compiled kernel
+    serves every raster state of the family while the state's own is
+    compiled elsewhere (vgx_emulator/specialise.py)."""
+    rgb = not key.cmode
+    return key._replace(ztest=True, zwrite=True, color=True,
+                        gouraud=key.gouraud and key.color, stencil=2,
+                        blend=blend.GENERIC if rgb else 0, logic=True, atest=rgb,
+                        pattern=True, cmask=True, dual=True)
+
+
+_scratch = {}
+
+
+def _scratch_bank(shape, dtype, fill=0):
+    """A bank the general variant reads and writes back unchanged in place
+    of one ``key`` does not use (its contents never matter), or the
+    all-ones pattern row (``fill`` 1)."""
+    k = (tuple(shape), np.dtype(dtype).str, fill)
+    bank = _scratch.get(k)
+    if bank is None:
+        if len(_scratch) >= 8:           # a few window sizes at a time
+            _scratch.clear()
+        bank = _scratch[k] = np.full(shape, fill, dtype)
+    return bank
+
+
+def neutral(key, planes, ip, shape):
+    """``(banks, parameters)`` with which the :func:`general` variant of
+    ``key`` draws exactly what ``key``'s variant draws with ``planes`` and
+    ``ip``: each stage ``key`` leaves off passes every fragment and
+    changes nothing.  z: ZF_ALWAYS, zwritemask 0, on a scratch bank when
+    ``key`` tests no z (and the stencil's zpass op is its pass op:
+    stencil(3G), without a z-buffer a passing fragment takes the pass op);
+    stencil: SF_ALWAYS, swritemask 0, on a scratch bank when off; colour:
+    writemask 0 on a scratch bank when ``key`` writes none, all ones when
+    it masks nothing; the second colour buffer is the first (written twice
+    with the same word); blending BF_ONE, BF_ZERO (exact: blend.blend_words);
+    logicop LO_SRC; afunction AF_ALWAYS; an all-ones pattern.  ``shape``:
+    the window's (rows, columns), the size of the scratch banks and of the
+    row the padded spans stay inside."""
+    cb0, cb1, zb, sb, pat = planes
+    p = ip.copy()
+    if not key.color:
+        cb0 = _scratch_bank(shape, np.uint32)
+        p[fragment.P_CMASK] = 0
+    elif not key.cmask:
+        p[fragment.P_CMASK] = -1
+    if not key.dual:
+        cb1 = cb0
+    if not key.ztest:
+        zb = _scratch_bank(shape, np.int32)
+        p[fragment.P_ZFUNC] = depth.ZF_ALWAYS
+        p[fragment.P_ZMAX] = 0
+        p[fragment.P_ZX:fragment.P_ZA + 1] = p[fragment.P_PX:fragment.P_PA + 1]
+    if not key.zwrite:
+        p[fragment.P_ZMASK] = 0
+    if not key.stencil:
+        sb = _scratch_bank(shape, np.uint8)
+        p[fragment.P_SFUNC] = depth.SF_ALWAYS
+    if key.stencil != 2:
+        p[fragment.P_SWMASK] = 0
+    if not key.blend:
+        p[fragment.P_BS0:fragment.P_BS5 + 1] = blend.factor_terms(blend.BF_ONE, True)
+        p[fragment.P_BD0:fragment.P_BD5 + 1] = blend.factor_terms(blend.BF_ZERO, False)
+    if not key.logic:
+        p[fragment.P_LOGICOP] = blend.LO_SRC
+    if not key.atest:
+        p[fragment.P_AFUNC] = depth.AF_ALWAYS
+    if not key.pattern:
+        pat = _scratch_bank((1, shape[1]), np.uint8, 1)
+        p[fragment.P_PATSIZE] = 1
+    return (cb0, cb1, zb, sb, pat), p
+
+
+def bank_shape(key, planes):
+    """(rows, columns) of the window from a bank ``key`` uses, or None when
+    it uses none (such a pass draws nothing)."""
+    for used, bank in ((key.color, planes[0]), (key.ztest, planes[2]),
+                       (key.stencil, planes[3])):
+        if used:
+            return bank.shape
+    return None

@@ -5,9 +5,12 @@
 walker; lines and points have their own walkers.  All pixel work happens in
 the numba kernels; this module only prepares arrays.
 """
+import numba
 import numpy as np
 
+from .. import specialise
 from ..geometry.batch import FILLED, LINES
+from ..raster import fragment
 from . import lines as _lines
 from . import triangles as _tris
 from .triangles import setup_triangles
@@ -15,6 +18,7 @@ from .triangles import setup_triangles
 
 _NO_TC = np.zeros((1, 3))
 _NO_ZMAX = np.zeros((1, 1), np.int32)
+_BANDS = np.zeros(1, np.int64)      # the type of the walker's bands (run_bands)
 _NO_TEX = (np.zeros((1, 4), np.uint8), np.array([1, 0, 1, 1], np.int64),
            np.zeros(1, np.int64), np.zeros(7))
 
@@ -75,17 +79,42 @@ def scan_batch(work, key, planes, ip, cull, closed_lines, tex=None, zmaxima=None
             tc = work.TC
         else:
             tk, tc = _NO_TEX, _NO_TC
-        _tris.triangle_kernel(key)(setup, work.X, work.Y, work.Z, work.C, work.CB,
-                                   work.prov, planes, ip, tc, tk,
-                                   _NO_ZMAX if zmaxima is None else zmaxima)
+        zm = _NO_ZMAX if zmaxima is None else zmaxima
+
+        def args(planes, ip):
+            return (setup, work.X, work.Y, work.Z, work.C, work.CB, work.prov, planes, ip,
+                    tc, tk, zm)
+        run(_tris.triangle_kernel, "walk", key, planes, ip, args, first=_BANDS)
         return _tris.drawn(setup)
     if work.klass == LINES:
         if len(work.seg0) == 0:
             return 0
-        _lines.line_kernel(key)(work.seg0, work.seg1, work.segflat, closed_lines,
-                                planes, ip)
+        run(_lines.line_kernel, "line", key, planes, ip,
+            lambda planes, ip: (work.seg0, work.seg1, work.segflat, closed_lines, planes, ip))
         return len(work.seg0)
     if len(work.points) == 0:
         return 0
-    _lines.point_kernel(key)(np.ascontiguousarray(work.points), planes, ip)
+    run_points(key, np.ascontiguousarray(work.points), planes, ip)
     return len(work.points)
+
+
+def run_points(key, points, planes, ip):
+    """Points (n, 7: x, y, z, r, g, b, a) through the point kernel of ``key``
+    (pnt(3G) batches, charstr(3G) glyph pixels)."""
+    run(_lines.point_kernel, "point", key, planes, ip, lambda planes, ip: (points, planes, ip))
+
+
+def run(kernel_of, kind, key, planes, ip, args, first=None):
+    """Call ``kernel_of(k)(*args(planes, ip))`` for the variant ``k`` that
+    vgx_emulator/specialise.py chooses for ``key``: its own, or the general
+    variant of its family with neutral banks and parameters; the stored-z
+    report (P_ZCHANGED) comes back into ``ip``.  ``first``: arguments before
+    ``args``' that the kernel itself receives (the walker's bands), for the
+    argument types of a compile request."""
+    def types():
+        lead = () if first is None else (first,)
+        return tuple(numba.typeof(a) for a in lead + args(planes, ip))
+    k, planes2, ip2 = specialise.choose(kind, key, planes, ip, types)
+    kernel_of(k)(*args(planes2, ip2))
+    if ip2 is not ip:
+        ip[fragment.P_ZCHANGED] = ip2[fragment.P_ZCHANGED]

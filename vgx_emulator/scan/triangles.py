@@ -249,14 +249,24 @@ def drawn(setup):
     return int(np.count_nonzero(rows[:, 0] <= rows[:, 1]))
 
 _kernels = {}
+_walkers = {}
+
+
+def walker(key):
+    """The compiled walker of one raster key (see raster.variants.RasterKey):
+    a numba dispatcher over a list of bands."""
+    w = _walkers.get(key)
+    if w is None:
+        w = _walkers[key] = _make_triangle_kernel(*key)
+    return w
 
 
 def triangle_kernel(key):
-    """The walker for one raster key (see raster.variants.RasterKey), as a
-    callable over every band (run_bands)."""
+    """The walker for one raster key, as a callable over every band
+    (run_bands)."""
     k = _kernels.get(key)
     if k is None:
-        k = _kernels[key] = functools.partial(run_bands, _make_triangle_kernel(*key))
+        k = _kernels[key] = functools.partial(run_bands, walker(key))
     return k
 
 
