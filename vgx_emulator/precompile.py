@@ -123,7 +123,7 @@ def exercise():
     """Draw, in a small window and with every pass on its family's general
     variant (specialise.MODE "always"), what programs draw soon after their
     first picture: a Gouraud and a flat z-buffered polygon, lines, points,
-    lrectwrite, rectcopy, text, a stencil clear, a textured polygon, then
+    lrectwrite, rectcopy, text, a stencil clear, a Gouraud textured polygon, then
     the same in colour-map mode.  That compiles the general variants of the
     walker, of lines, points and pixel writes (RGB, textured and colour
     map), on which a raster state whose own kernels are not compiled yet
@@ -143,6 +143,7 @@ def exercise():
     gl.tevdef(1, 0, [gl.TV_MODULATE, gl.TV_NULL])
     gl.texbind(gl.TX_TEXTURE_0, 1)
     gl.tevbind(gl.TV_ENV0, 1)
+    gl.shademodel(gl.GOURAUD)           # the default, and what lit textured programs use
     gl.bgnpolygon()
     for s, t in ((0, 0), (1, 0), (1, 1)):
         gl.t2f((s, t))
