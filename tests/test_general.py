@@ -53,18 +53,23 @@ def test_every_figure_draws_the_same_on_the_general_variants(prog, fig, monkeypa
 
 
 def test_the_general_variant_keeps_what_setup_and_colour_depend_on():
-    """general() turns every per-fragment stage on and keeps Gouraud,
-    colour-map mode, two-sided colours and texture; a key that is its own
-    general variant is left alone."""
+    """general() turns every per-fragment stage on but blending and the
+    second colour buffer, and keeps Gouraud, colour-map mode, two-sided
+    colours and texture; a blending key's general variant has the generic
+    blend; a key that is its own general variant is left alone."""
     k = common_key()._replace(ztest=False, zwrite=False, twoside=True)
     g = variants.general(k)
-    assert (g.ztest, g.zwrite, g.color, g.stencil, g.logic, g.atest, g.pattern, g.cmask,
-            g.dual) == (True, True, True, 2, True, True, True, True, True)
-    assert g.blend == blend.GENERIC
+    assert (g.ztest, g.zwrite, g.color, g.stencil, g.logic, g.atest, g.pattern,
+            g.cmask) == (True, True, True, 2, True, True, True, True)
+    assert (g.blend, g.dual) == (0, False)
     assert (g.gouraud, g.cmode, g.twoside, g.texture) == (True, False, True, False)
-    cm = variants.general(k._replace(cmode=True, color=False))
+    folded = blend.key_code(blend.BF_SA, blend.BF_MSA)
+    assert folded != blend.GENERIC
+    gb = variants.general(k._replace(blend=folded, dual=True))
+    assert (gb.blend, gb.dual) == (blend.GENERIC, True)
+    cm = variants.general(k._replace(cmode=True, color=False, blend=folded))
     assert cm.blend == 0 and not cm.atest and not cm.gouraud   # no colour: no planes
-    assert variants.general(g) == g
+    assert variants.general(g) == g and variants.general(gb) == gb
 
 
 def test_neutral_uses_scratch_banks_only_for_what_the_key_leaves_off():
@@ -76,7 +81,7 @@ def test_neutral_uses_scratch_banks_only_for_what_the_key_leaves_off():
     planes = (front, variants._DUMMY_C, z, variants._DUMMY_S, variants._SOLID)
     ip = np.zeros(44, np.int64)
     (c0, c1, zb, sb, pat), p = variants.neutral(key, planes, ip, variants.bank_shape(key, planes))
-    assert c0 is front and c1 is front and zb is z
+    assert c0 is front and c1 is variants._DUMMY_C and zb is z
     assert sb.shape == (6, 9) and sb is not variants._DUMMY_S
     assert pat.shape == (1, 9) and pat.all()
     assert p is not ip and not ip.any()

@@ -36,11 +36,11 @@ def _compare_row(func, a, b):
 
 
 @numba.njit
-def _blend_plane(ts, td, src, dst):
+def _blend_plane(ts, td, src, dst, generic=False):
     out = np.empty_like(src)
     for i in range(src.shape[0]):
         for j in range(src.shape[1]):
-            out[i, j] = blend.blend_words(ts, td, src[i, j], dst[i, j])
+            out[i, j] = blend.blend_words(ts, td, src[i, j], dst[i, j], generic)
     return out
 
 
@@ -170,9 +170,13 @@ def test_blend_words_literal_transparency():
                                 blend.BF_MIN_SA_MDA])
 @pytest.mark.parametrize("df", [blend.BF_ZERO, blend.BF_ONE, blend.BF_SC, blend.BF_MSC,
                                 blend.BF_SA, blend.BF_MSA, blend.BF_DA, blend.BF_MDA])
-def test_blend_words_every_factor_pair(sf, df):
+@pytest.mark.parametrize("generic", [False, True])
+def test_blend_words_every_factor_pair(sf, df, generic):
+    """Both divisions by 510 (a folded pair's and the generic kernel's
+    multiply and shift) give the man page's rounded blend."""
     ts, td = blend.factor_terms(sf, True), blend.factor_terms(df, False)
-    assert np.array_equal(_blend_plane(ts, td, SRC, DST), _expected_blend(sf, df, SRC, DST))
+    assert np.array_equal(_blend_plane(ts, td, SRC, DST, generic),
+                          _expected_blend(sf, df, SRC, DST))
 
 
 def test_additive_blend_saturates():

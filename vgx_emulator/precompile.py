@@ -123,12 +123,13 @@ def exercise():
     """Draw, in a small window and with every pass on its family's general
     variant (specialise.MODE "always"), what programs draw soon after their
     first picture: a Gouraud and a flat z-buffered polygon, lines, points,
-    lrectwrite, rectcopy, text, a stencil clear, a Gouraud textured polygon, then
-    the same in colour-map mode.  That compiles the general variants of the
-    walker, of lines, points and pixel writes (RGB, textured and colour
-    map), on which a raster state whose own kernels are not compiled yet
-    runs (vgx_emulator/specialise.py), and the kernels of those primitives
-    that four spheres does not use, with the argument types of real calls."""
+    lrectwrite, rectcopy, text, a stencil clear, a blended polygon and
+    line, a textured polygon, then the same in colour-map mode.  That
+    compiles the general variants of the walker, of lines, points and
+    pixel writes (RGB, blended, textured and colour map), on which a
+    raster state whose own kernels are not compiled yet runs
+    (vgx_emulator/specialise.py), and the kernels of those primitives that
+    four spheres does not use, with the argument types of real calls."""
     import irisgl as gl
     from . import specialise
     specialise.MODE = "always"
@@ -139,11 +140,19 @@ def exercise():
     gl.gconfig()
     _exercise_window(gl, lambda i: gl.c3f([(1, 0, 0), (0, 1, 0), (0, 0, 1)][i]))
     gl.sclear(0)
+    gl.shademodel(gl.GOURAUD)           # the default, and what lit programs use
+    gl.blendfunction(gl.BF_SA, gl.BF_MSA)     # the general variant with blending
+    gl.bgnpolygon()
+    for v in ((1, 1), (14, 2), (5, 13)):
+        gl.v2f(v)
+    gl.endpolygon()
+    gl.move2(1, 1)                      # (smoothed lines blend: linesmooth(3G))
+    gl.draw2(12, 9)
+    gl.blendfunction(gl.BF_ONE, gl.BF_ZERO)
     gl.texdef2d(1, 4, 2, 2, np.full(4, 0xffffffff, np.uint32), 0, [gl.TX_NULL])
     gl.tevdef(1, 0, [gl.TV_MODULATE, gl.TV_NULL])
     gl.texbind(gl.TX_TEXTURE_0, 1)
     gl.tevbind(gl.TV_ENV0, 1)
-    gl.shademodel(gl.GOURAUD)           # the default, and what lit textured programs use
     gl.bgnpolygon()
     for s, t in ((0, 0), (1, 0), (1, 1)):
         gl.t2f((s, t))

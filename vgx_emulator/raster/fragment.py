@@ -152,7 +152,7 @@ def colour_out(old, word, blend, logic, cmask, cmode, bterms, prm):
     if logic:
         new = _blend.logic_op(prm[P_LOGICOP], new, old)
     if blend and not cmode:
-        new = _blend.blend_words(bterms[0], bterms[1], new, old)
+        new = _blend.blend_words(bterms[0], bterms[1], new, old, blend < 0)
     if cmask:
         m = prm[P_CMASK]
         new = (old & ~m) | (new & m)

@@ -123,19 +123,23 @@ def banks(key, fb, targets, pattern=None, origin=(0, 0)):
 
 def general(key):
     """The general variant of ``key``'s family: every per-fragment stage
-    compiled in (z test and write, stencil test and write, the generic
-    blend, logicop, afunction, pattern, writemask, two colour buffers),
-    with the fields that change what setup computes or how a colour is
-    made kept as ``key`` has them (Gouraud, colour-map mode, two-sided,
-    texture).  Run with the banks and parameters of :func:`neutral`, it
-    draws exactly what ``key``'s own variant draws: one compiled kernel
-    serves every raster state of the family while the state's own is
-    compiled elsewhere (vgx_emulator/specialise.py)."""
+    compiled in (z test and write, stencil test and write, logicop,
+    afunction, pattern, writemask), with the fields that change what setup
+    computes or how a colour is made kept as ``key`` has them (Gouraud,
+    colour-map mode, two-sided, texture), and two that cost much when
+    neutral: blending (the generic blend when ``key`` blends, none when it
+    does not: its factor arithmetic made a neutral BF_ONE, BF_ZERO cost
+    some 15 ns a fragment, twenty times a pass's) and the second colour
+    buffer (the first buffer given twice defeats the span loop's
+    vectorisation: 4.5 ns a fragment).  Run with the banks and parameters
+    of :func:`neutral`, it draws exactly what ``key``'s own variant draws:
+    one compiled kernel serves the raster states of the family while a
+    state's own is compiled elsewhere (vgx_emulator/specialise.py)."""
     rgb = not key.cmode
     return key._replace(ztest=True, zwrite=True, color=True,
                         gouraud=key.gouraud and key.color, stencil=2,
-                        blend=blend.GENERIC if rgb else 0, logic=True, atest=rgb,
-                        pattern=True, cmask=True, dual=True)
+                        blend=blend.GENERIC if rgb and key.blend else 0, logic=True,
+                        atest=rgb, pattern=True, cmask=True)
 
 
 _scratch = {}
@@ -163,9 +167,9 @@ def neutral(key, planes, ip, shape):
     stencil(3G), without a z-buffer a passing fragment takes the pass op);
     stencil: SF_ALWAYS, swritemask 0, on a scratch bank when off; colour:
     writemask 0 on a scratch bank when ``key`` writes none, all ones when
-    it masks nothing; the second colour buffer is the first (written twice
-    with the same word); blending BF_ONE, BF_ZERO (exact: blend.blend_words);
-    logicop LO_SRC; afunction AF_ALWAYS; an all-ones pattern.  ``shape``:
+    it masks nothing; logicop LO_SRC; afunction AF_ALWAYS; an all-ones
+    pattern (blending and the second colour buffer are as ``key`` has
+    them: :func:`general`).  ``shape``:
     the window's (rows, columns), the size of the scratch banks and of the
     row the padded spans stay inside."""
     cb0, cb1, zb, sb, pat = planes
@@ -175,8 +179,6 @@ def neutral(key, planes, ip, shape):
         p[fragment.P_CMASK] = 0
     elif not key.cmask:
         p[fragment.P_CMASK] = -1
-    if not key.dual:
-        cb1 = cb0
     if not key.ztest:
         zb = _scratch_bank(shape, np.int32)
         p[fragment.P_ZFUNC] = depth.ZF_ALWAYS
@@ -189,9 +191,6 @@ def neutral(key, planes, ip, shape):
         p[fragment.P_SFUNC] = depth.SF_ALWAYS
     if key.stencil != 2:
         p[fragment.P_SWMASK] = 0
-    if not key.blend:
-        p[fragment.P_BS0:fragment.P_BS5 + 1] = blend.factor_terms(blend.BF_ONE, True)
-        p[fragment.P_BD0:fragment.P_BD5 + 1] = blend.factor_terms(blend.BF_ZERO, False)
     if not key.logic:
         p[fragment.P_LOGICOP] = blend.LO_SRC
     if not key.atest:
