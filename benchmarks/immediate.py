@@ -35,12 +35,14 @@ if "OpenGL.GL" not in sys.modules:
 
 import numpy as np  # noqa: E402
 
+import vgx_emulator  # noqa: E402
+
 from irisgl import (DEFLIGHT, DEFLMODEL, DEFMATERIAL, DIFFUSE, LCOLOR, LIGHT0,  # noqa: E402
                     LMNULL, LMODEL, MATERIAL, POSITION, RGBcolor, RGBmode, bgnpoint,
                     bgnpolygon, bgntmesh, c3f, c4f, callobj, closeobj, cpack, czclear,
                     endpoint, endpolygon, endtmesh, finish, gconfig, genobj, gexit,
-                    lmbind, lmdef, lrectread, makeobj, n3f, ortho, prefsize, t2f, v2f,
-                    v3f, v4f, winopen, zbuffer)
+                    lmbind, lmdef, lrectread, makeobj, mmode, n3f, ortho, prefsize, t2f, v2f,
+                    v3f, v4f, winopen, zbuffer, MVIEWING)
 
 N = 1000
 
@@ -142,6 +144,7 @@ def emu_window(w, h):
     RGBmode()
     gconfig()
     zbuffer(1)
+    mmode(MVIEWING)                 # lighting needs MVIEWING (lmbind(3G))
     ortho(0, w, 0, h, 0, 100)
     lmdef(DEFMATERIAL, 1, 0, [DIFFUSE, 0.8, 0.6, 0.3, LMNULL])
     lmdef(DEFLIGHT, 1, 0, [POSITION, 0.3, 0.4, 1.0, 0.0, LCOLOR, 1, 1, 1, LMNULL])
@@ -172,7 +175,8 @@ def emu_tmesh(strips):
         endtmesh()
 
 
-def timed(run, repeat, read):
+def timed(run, repeat, read, capture):
+    """(median seconds of ``run`` + ``read``, the picture it left as RGB)."""
     run()
     read()                                 # warm-up: compiles
     ts = []
@@ -181,7 +185,7 @@ def timed(run, repeat, read):
         run()
         read()
         ts.append(time.perf_counter() - t0)
-    return statistics.median(ts)
+    return statistics.median(ts), capture()
 
 
 def workloads(w, h, ntri):
@@ -204,16 +208,21 @@ def emulator(w, h, repeat, tris_poly, strips, ntm):
     def read():
         lrectread(0, 0, 0, 0)
 
+    def capture():
+        return vgx_emulator.window_image()[..., :3]
+
     out = {}
     clear = lambda: czclear(0, 0x7FFFFF)   # noqa: E731
-    out["immediate polygons"] = (len(tris_poly), timed(
-        lambda: (clear(), emu_polygons(tris_poly)), repeat, read))
-    out["immediate tmesh"] = (ntm, timed(lambda: (clear(), emu_tmesh(strips)), repeat, read))
+    out["immediate polygons"] = (len(tris_poly), *timed(
+        lambda: (clear(), emu_polygons(tris_poly)), repeat, read, capture))
+    out["immediate tmesh"] = (ntm, *timed(lambda: (clear(), emu_tmesh(strips)), repeat, read,
+                                          capture))
     ob = genobj()
     makeobj(ob)
     emu_tmesh(strips)
     closeobj()
-    out["display-list tmesh"] = (ntm, timed(lambda: (clear(), callobj(ob)), repeat, read))
+    out["display-list tmesh"] = (ntm, *timed(lambda: (clear(), callobj(ob)), repeat, read,
+                                             capture))
     gexit()
     return out
 
@@ -258,15 +267,16 @@ def mesa(w, h, repeat, tris_poly, strips, ntm):
     def clear():
         g.glClear(g.GL_COLOR_BUFFER_BIT | g.GL_DEPTH_BUFFER_BIT)
 
-    out = {"immediate polygons": (len(tris_poly), timed(lambda: (clear(), polys()), repeat,
-                                                        g.glFinish)),
-           "immediate tmesh": (ntm, timed(lambda: (clear(), tmesh()), repeat, g.glFinish))}
+    out = {"immediate polygons": (len(tris_poly), *timed(lambda: (clear(), polys()), repeat,
+                                                         g.glFinish, m.rgb)),
+           "immediate tmesh": (ntm, *timed(lambda: (clear(), tmesh()), repeat, g.glFinish,
+                                           m.rgb))}
     lst = g.glGenLists(1)
     g.glNewList(lst, g.GL_COMPILE)
     tmesh()
     g.glEndList()
-    out["display-list tmesh"] = (ntm, timed(lambda: (clear(), g.glCallList(lst)), repeat,
-                                            g.glFinish))
+    out["display-list tmesh"] = (ntm, *timed(lambda: (clear(), g.glCallList(lst)), repeat,
+                                             g.glFinish, m.rgb))
     m.close()
     return m.renderer, out
 
@@ -295,6 +305,7 @@ def main(argv=None):
     tris_poly = tris[:a.polygons]
     emu = emulator(w, h, a.repeat, tris_poly, strips, ntm)
     gl = None
+    from vs_mesa import DIFF_THRESHOLD, diff_fraction
     if not a.no_mesa:
         try:
             gl = mesa(w, h, a.repeat, tris_poly, strips, ntm)
@@ -303,14 +314,18 @@ def main(argv=None):
     print(f"\n{w}x{h}, lit z-buffered height field, triangles of {area:.1f} px")
     head = "workload                 triangles   emulator M tri/s"
     if gl:
-        head += f"   {gl[0][:24]} M tri/s   ratio"
+        head += f"   {gl[0][:24]} M tri/s   ratio   differs"
     print(head)
-    for k, (n, t) in emu.items():
+    for k, (n, t, img) in emu.items():
         line = f"{k:<24} {n:9d} {n / t / 1e6:14.3f}"
         if gl:
-            ng, tg = gl[1][k]
-            line += f" {ng / tg / 1e6:24.3f} {(n / t) / (ng / tg):8.2f}x"
+            ng, tg, gimg = gl[1][k]
+            line += f" {ng / tg / 1e6:24.3f} {(n / t) / (ng / tg):8.2f}x" \
+                    f" {diff_fraction(img, gimg):9.4f}"
         print(line)
+    if gl:
+        print(f"(differs: the fraction of pixels whose R, G or B differs by more than "
+              f"{DIFF_THRESHOLD} between the two pictures, a check that both drew the same)")
 
 
 if __name__ == "__main__":

@@ -232,7 +232,7 @@ def n3f(n=_NO, *more):
 # -- colours -----------------------------------------------------------------
 # The calls append their components as given (EV_UNIT 0.0-1.0, EV_BYTE
 # 0-255, EV_CPACK a word); clamping and scaling happen at the flush,
-# vectorised (geometry/batch.py colour_values).  ``EC`` is None in
+# in its compiled event pass (geometry/batch.py per_vertex).  ``EC`` is None in
 # colour-map mode, where these calls are errors.
 def _limit(v, top):
     """v clamped to 0..top; NaN and +-inf pass unclamped (the flush drops

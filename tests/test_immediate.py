@@ -301,6 +301,32 @@ def test_polygon_of_257_vertices_is_an_error_at_endpolygon(open_window):
     endpolygon()
 
 
+def test_colours_sent_inside_a_dropped_polygon_stay_current(open_window):
+    # c3f(3G) sets the current colour whether or not the polygon it was sent
+    # in is drawn: after the 257-vertex polygon is refused, the next one
+    # (a square with no colour call of its own, preceded by a drawn red one
+    # so that the stream already holds vertices) takes the last colour of
+    # the dropped one, green; its own vertices come after the dropped ones
+    open_window(W, H)
+    ortho2(0, W, 0, H)
+    cpack(0xFF0000FF)
+    rectf(0, 0, 4, 4)                                # red, 4x4 pixels
+    bgnpolygon()
+    for i, a in enumerate(np.linspace(0, 2 * np.pi, 257, endpoint=False)):
+        c3f((0, 1, 0) if i == 256 else (0, 0, 1))
+        v2f((24 + 10 * np.cos(a), 20 + 10 * np.sin(a)))
+    with pytest.raises(GLError, match=r"^endpolygon: 257 vertices"):
+        endpolygon()
+    bgnpolygon()
+    for x, y in ((10, 10), (20, 10), (20, 20), (10, 20)):
+        v2f((x, y))
+    endpolygon()
+    c = colour()
+    assert (c == 0xFF0000FF).sum() == 16
+    assert (c == 0xFF00FF00).sum() == 100            # [10, 20) x [10, 20): green
+    assert (c == 0xFFFF0000).sum() == 0              # nothing blue
+
+
 def test_fast_calls_are_recorded_in_an_open_object(open_window):
     open_window(W, H)
     ob = genobj()

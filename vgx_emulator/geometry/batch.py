@@ -13,8 +13,9 @@ Immediate mode leaves two flat Python lists, appended to by one C call each:
   and an ``EV_REC`` event naming it.  The window state's current
   attributes are read through `sync`, which takes the newest events.
 
-No Python runs per vertex at the flush: `arrays` finds, vectorised, the
-last event of each kind before every vertex (`per_vertex`).  Display-list
+No Python runs per vertex at the flush: `arrays` converts the lists with
+one C call each and replays the events over the vertices in one compiled
+pass (`per_vertex`).  Display-list
 replay, NURBS and curveit append whole blocks of positions and records
 (`add_vertices`); the immediate lists then continue after them.  Vertex
 numbers in primitives and swaps are global over blocks + lists.  A batch
@@ -23,6 +24,7 @@ between classes is kept by flushing on a change.
 """
 import numpy as np
 
+from ..jit import njit
 from .assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
 
 FILLED, LINES, POINTS = 0, 1, 2
@@ -71,25 +73,6 @@ def colour_value(kind, a, b, c, d):
     return (float(w & 0xFF), float(w >> 8 & 0xFF), float(w >> 16 & 0xFF), float(w >> 24 & 0xFF))
 
 
-def colour_values(kind, vals):
-    """colour_value over (m,) kinds and (m, 4) values (vectorised)."""
-    out = vals.copy()
-    unit = kind == EV_UNIT
-    byte = kind == EV_BYTE
-    fin = np.isfinite(vals)
-    if unit.any():
-        v = vals[unit]
-        out[unit] = np.where(fin[unit], np.clip(v, 0.0, 1.0), v) * 255.0
-    if byte.any():
-        v = vals[byte]
-        out[byte] = np.where(fin[byte], np.clip(v, 0.0, 255.0), v)
-    pk = kind == EV_CPACK
-    if pk.any():
-        w = vals[pk, 0].astype(np.int64)
-        out[pk] = np.stack([(w >> s) & 0xFF for s in (0, 8, 16, 24)], 1).astype(np.float64)
-    return out
-
-
 class Transform:
     """Matrices in force for a run of vertices (float64)."""
 
@@ -115,66 +98,93 @@ def per_vertex(ev, recs, n, mats):
     its last record, with the normal, colour and texture coordinate of any
     later n3f/colour/t* event; LAST_WAS_NORMAL follows the later of the last
     normal and colour (lmcolor(3G)), COLOUR_SINCE_BIND is set by a colour
-    sent while a material is bound.  O(n + m): one searchsorted, then a
-    running maximum of event indices per kind."""
-    at, kind = ev[:, 0], ev[:, 1]
-    idx = np.arange(len(ev))
-    last = np.searchsorted(at, np.arange(0, 4 * n, 4), side="right") - 1
-    if n and last[0] < 0:
-        raise AssertionError("a vertex before any attribute record")
-    none = np.full(n, -1, np.int64)
-
-    def upto(mask):
-        """Per vertex: the index of the last event of ``mask`` before it (-1:
-        none; a kind the batch never sent costs no pass over the vertices)."""
-        if not mask.any():
-            return none
-        return np.maximum.accumulate(np.where(mask, idx, -1))[last]
-    rr = upto(kind == EV_REC)
-    if n and rr[0] < 0:
-        raise AssertionError("a vertex before any attribute record")
-    if len(recs) == 1:                      # one record for every vertex: no gather
-        out = np.empty((n, RECORD))
-        out[:] = recs[0]
-    else:
-        out = recs[ev[rr, 2].astype(np.int64)]
-    nn = upto(kind == EV_NORMAL)
-    cc = upto(kind >= EV_COLOUR)
-    tt = upto(kind == EV_TEX)
-    _override(out, R_NORMAL, nn > rr, ev, nn, slice(2, 5))
-    _override(out, R_STRQ, tt > rr, ev, tt, slice(2, 6))
-    use = cc > rr
-    later = use | (nn > rr)
-    if later.any():
-        if use.any():
-            out[use, R_COLOUR] = colour_values(kind[cc[use]], ev[cc[use], 2:6])
-        flags = out[:, R_FLAGS].astype(np.int64)
-        lwn = np.where(later, nn > cc, (flags & LAST_WAS_NORMAL) != 0)
-        bound = np.array([m[0] != 0 for m in mats], bool)[out[:, R_MATERIAL].astype(np.int64)]
-        since = ((flags & COLOUR_SINCE_BIND) != 0) | (use & bound)
-        out[:, R_FLAGS] = np.where(lwn, LAST_WAS_NORMAL, 0) | np.where(since, COLOUR_SINCE_BIND, 0)
+    sent while a material is bound.  One compiled pass over the vertices
+    and the events in stream order (an event applies from the vertex whose
+    x was ``pos[at]`` on)."""
+    out = np.empty((n, RECORD))
+    if n:
+        first = np.flatnonzero(ev[:, 1] == EV_REC)[:1]
+        if not len(first) or ev[first[0], 0] > 0:
+            raise AssertionError("a vertex before any attribute record")
+        bound = np.array([m[0] != 0 for m in mats] or [False], np.bool_)
+        _replay(np.ascontiguousarray(ev), np.ascontiguousarray(recs), bound, out)
     return out
 
 
-def _override(out, cols, use, ev, rows, vals):
-    """out[use, cols] = ev[rows[use], vals]: the values of the events
-    ``rows`` where ``use``; whole columns when every row is used."""
-    if use.all():
-        out[:, cols] = ev[rows, vals]
-    elif use.any():
-        out[use, cols] = ev[rows[use], vals]
+@njit
+def _replay(ev, recs, bound, out):
+    """per_vertex's pass: the current attributes, updated event by event,
+    copied to each vertex (the colour kinds converted as colour_value)."""
+    cur = np.zeros(recs.shape[1])      # (the first vertex's record replaces it)
+    j = 0
+    m = ev.shape[0]
+    for i in range(out.shape[0]):
+        while j < m and ev[j, 0] <= 4 * i:
+            kind = int(ev[j, 1])
+            if kind == EV_REC:
+                cur[:] = recs[int(ev[j, 2])]
+            elif kind == EV_NORMAL:
+                cur[0] = ev[j, 2]
+                cur[1] = ev[j, 3]
+                cur[2] = ev[j, 4]
+                cur[R_FLAGS] = (int(cur[R_FLAGS]) & COLOUR_SINCE_BIND) | LAST_WAS_NORMAL
+            elif kind == EV_TEX:
+                for k in range(4):
+                    cur[9 + k] = ev[j, 2 + k]
+            else:
+                if kind == EV_CPACK:
+                    w = np.int64(ev[j, 2])
+                    for k in range(4):
+                        cur[3 + k] = np.float64((w >> (8 * k)) & 0xFF)
+                else:
+                    for k in range(4):
+                        v = ev[j, 2 + k]
+                        if kind == EV_UNIT:
+                            if np.isfinite(v):
+                                v = min(max(v, 0.0), 1.0)
+                            v = v * 255.0
+                        elif kind == EV_BYTE and np.isfinite(v):
+                            v = min(max(v, 0.0), 255.0)
+                        cur[3 + k] = v
+                since = COLOUR_SINCE_BIND if bound[int(cur[R_MATERIAL])] else 0
+                cur[R_FLAGS] = (int(cur[R_FLAGS]) & COLOUR_SINCE_BIND) | since
+            j += 1
+        out[i] = cur
+
+
+#: sync: from this many new events the kinds are searched as one array
+#: (a list.index over a kind never sent scans every event, once per kind);
+#: at a flush that array is the one the flush made (``ev_array``)
+_SEARCH_ARRAY = 64
+
+
+def _newest(back, kinds):
+    """The first position in ``back`` (event kinds, newest first: a list, or
+    an array when there are many) holding one of ``kinds``; len(back) when
+    none does."""
+    if isinstance(back, list):
+        hit = len(back)
+        for k in kinds:
+            try:
+                hit = min(hit, back.index(k, 0, hit))
+            except ValueError:
+                pass
+        return hit
+    found = (back >= kinds[0]) & (back <= kinds[-1])     # kinds: consecutive numbers
+    return int(np.argmax(found)) if found.any() else len(back)
 
 
 class VertexBatch:
     """One window's vertex stream (see the module docstring)."""
 
-    __slots__ = ("pos", "ev", "synced", "attrs", "owner", "open", "vblocks", "vbase",
+    __slots__ = ("pos", "ev", "ev_array", "synced", "attrs", "owner", "open", "vblocks", "vbase",
                  "xforms", "mats", "prims", "blocks", "swaps", "calls", "klass", "start",
                  "dirty", "xf_dirty")
 
     def __init__(self):
         self.pos = []               # flat x, y, z, w after the last vertex block
         self.ev = []                # flat attribute events (EVW numbers) for ``pos``
+        self.ev_array = None        # ev as the last flush converted it (sync reads its kinds)
         self.synced = 0             # len(ev) when the window state last took them (sync)
         self.attrs = []             # flat records the EV_REC events name
         self.owner = None           # the WindowState whose current attributes ev updates
@@ -188,6 +198,7 @@ class VertexBatch:
         del self.pos[:]
         del self.ev[:]
         del self.attrs[:]
+        self.ev_array = None
         self.synced = 0
         self.vblocks = []           # earlier vertices: [(pos (n, 4), records (n, RECORD))]
         self.vbase = 0              # vertices in vblocks
@@ -266,6 +277,14 @@ class VertexBatch:
             self.vblocks, self.vbase, first = [], 0, 0
             self.start = 0
         del self.pos[4 * first:]
+        # the attribute calls among the dropped vertices still set the
+        # current normal, colour and texture coordinate: their events now
+        # apply from the next vertex (per_vertex reads ``at`` in order)
+        ev, top = self.ev, 4 * first
+        j = len(ev) - EVW
+        while j >= 0 and ev[j] > top:
+            ev[j] = top
+            j -= EVW
         self.swaps = [s for s in self.swaps if s < self.start]
         self.dirty = True
 
@@ -275,7 +294,7 @@ class VertexBatch:
         n = len(self.pos) >> 2
         # fromiter: half the time of np.array on a list of Python numbers
         pos = np.fromiter(self.pos, np.float64, len(self.pos)).reshape(n, 4)
-        ev = np.fromiter(self.ev, np.float64, len(self.ev)).reshape(-1, EVW)
+        ev = self.ev_array = np.fromiter(self.ev, np.float64, len(self.ev)).reshape(-1, EVW)
         recs = np.array(self.attrs, np.float64).reshape(-1, RECORD)
         return pos, per_vertex(ev, recs, n, self.mats)
 
@@ -285,16 +304,16 @@ class VertexBatch:
         of the kinds, then a few Python steps)."""
         ev, first = self.ev, self.synced
         self.synced = len(ev)             # before the writes below: they sync too
-        back = ev[len(ev) - EVW + 1:first:-EVW]       # the kinds, newest first
+        if len(ev) - first < EVW * _SEARCH_ARRAY:
+            back = ev[len(ev) - EVW + 1:first:-EVW]       # the kinds, newest first
+        elif self.ev_array is not None and EVW * len(self.ev_array) == len(ev):
+            back = self.ev_array[:first // EVW - 1:-1, 1] if first else self.ev_array[::-1, 1]
+        else:
+            back = np.fromiter(ev[len(ev) - EVW + 1:first:-EVW], np.float64)
         last = {}
         for group, kinds in ((EV_NORMAL, (EV_NORMAL,)), (EV_TEX, (EV_TEX,)),
                              (EV_COLOUR, COLOUR_KINDS)):
-            hit = len(back)
-            for k in kinds:
-                try:
-                    hit = min(hit, back.index(k, 0, hit))
-                except ValueError:
-                    pass
+            hit = _newest(back, kinds)
             if hit < len(back):
                 last[group] = len(back) - 1 - hit    # index among the new events
         d = st.__dict__
@@ -328,6 +347,7 @@ class VertexBatch:
             del self.pos[:]
         del self.ev[:]
         del self.attrs[:]
+        self.ev_array = None
         self.synced = 0
         self.dirty = True
 
