@@ -103,6 +103,49 @@ def test_lit_scene_equals_its_display_list(open_window, lmc):
     assert np.array_equal(a, b)
 
 
+@pytest.mark.parametrize("lit", [False, True])
+def test_a_batch_flushed_as_it_grows_draws_the_same(open_window, monkeypatch, lit):
+    # an end* that brings the batch to config.FLUSH_VERTICES flushes it (the
+    # raster thread draws while the program goes on): the picture, z and the
+    # current attributes are those of one batch flushed at the end
+    from irisgl._current import machine
+    from vgx_emulator import config
+
+    def draw(limit):
+        monkeypatch.setattr(config, "FLUSH_VERTICES", limit)
+        open_window(W, H)
+        zbuffer(1)
+        cpack(0)
+        clear()
+        zclear()
+        if lit:
+            mmode(MVIEWING)
+            _lighting()
+            lmbind(MATERIAL, 1)
+            lmcolor(LMC_AD)
+        ortho(-1, 1, -1, 1, -1, 1)
+        bgntmesh()
+        for i in range(12):
+            n3f((0.1 * i - 0.6, 0.3, 0.8))
+            c3f((0.1 * i, 0.5, 0.2))
+            v3f((-0.9 + 0.15 * i, -0.9, 0.1 * (i % 3)))
+            v3f((-0.9 + 0.15 * i, -0.2, -0.1 * (i % 2)))
+        endtmesh()
+        flushed = len(machine.current.batch) == 0
+        _scene()
+        out = (colour(), machine.current.fb.z.copy(), gRGBcolor(), flushed)
+        gexit()
+        return out
+
+    one = draw(1 << 30)
+    many = draw(8)
+    assert not one[3] and many[3]                    # the small limit flushed at endtmesh
+    assert (one[0] != 0).sum() > 300
+    assert np.array_equal(one[0], many[0])
+    assert np.array_equal(one[1], many[1])
+    assert one[2] == many[2]
+
+
 def test_colour_values_as_the_man_pages_give_them(open_window):
     open_window(W, H)
     c3f((2.0, -1.0, 0.5))
