@@ -234,3 +234,51 @@ def test_a_multipass_frame_waits_once(args, monkeypatch):
     assert len(marks) >= 3 and img.any()
     # between two frame points: the first one's wait, none while drawing
     assert [b - a for a, b in zip(marks[1:], marks[2:])] == [1] * (len(marks) - 2)
+
+
+def test_setup_and_lighting_in_shares_draw_the_same(open_window, monkeypatch):
+    """A large batch's triangle setup and lighting run in shares on the
+    walker's threads while the raster thread is idle (pipeline.split): the
+    picture and z are those of one share each, and the shares did run."""
+    from irisgl import (DEFLIGHT, DEFLMODEL, DEFMATERIAL, DIFFUSE, LIGHT0, LMNULL, LMODEL,
+                        MATERIAL, MVIEWING, POSITION, bgntmesh, endtmesh, lmbind, lmdef,
+                        mmode, n3f, ortho, v3f, zbuffer)
+    from vgx_emulator.geometry import lighting
+
+    def draw(share):
+        monkeypatch.setattr(config, "SETUP_SHARE", share)
+        monkeypatch.setattr(lighting, "LIGHT_SHARE", share)
+        open_window(64, 48, cleared=True)
+        zbuffer(1)
+        zclear()
+        mmode(MVIEWING)
+        ortho(0, 64, 0, 48, -10, 10)
+        lmdef(DEFMATERIAL, 1, 0, [DIFFUSE, 0.8, 0.6, 0.3, LMNULL])
+        lmdef(DEFLIGHT, 1, 0, [POSITION, 0.3, 0.4, 1.0, 0.0, LMNULL])
+        lmdef(DEFLMODEL, 1, 0, [LMNULL])
+        lmbind(MATERIAL, 1)
+        lmbind(LIGHT0, 1)
+        lmbind(LMODEL, 1)
+        for r in range(24):                    # 24 strips of 2 x 64 triangles
+            bgntmesh()
+            for c in range(65):
+                for y in (2 * r, 2 * r + 2):
+                    z = np.sin(c / 5.0) * np.cos(y / 7.0)
+                    n3f((0.3 * np.cos(c / 5.0), -0.2 * np.sin(y / 7.0), 1.0))
+                    v3f((c, y, z))
+            endtmesh()
+        pipeline.sync()                        # the clears done: the raster thread idle
+        machine.flush()
+        fb = machine.current.fb
+        return fb.front.copy(), fb.z.copy()
+
+    calls = []
+    real = pipeline.on_threads
+    monkeypatch.setattr(pipeline, "on_threads", lambda *a: (calls.append(a[1]), real(*a)))
+    whole = draw(1 << 30)
+    assert not calls
+    shared = draw(256)
+    assert len(calls) == 2 and min(calls) > 1       # setup and lighting, in shares
+    assert (whole[0] != 0).sum() > 2000
+    assert np.array_equal(whole[0], shared[0])
+    assert np.array_equal(whole[1], shared[1])

@@ -64,6 +64,11 @@ PARALLEL_MIN_PIXELS = 1 << 18
 #: contiguous share per thread).
 SHARES_PER_THREAD = 4
 
+#: triangle setup (scan.triangles.setup_triangles) of a batch of at least
+#: twice this many triangles is cut into shares of at least this many,
+#: set up on the walker's threads while the raster thread has nothing queued
+SETUP_SHARE = 4096
+
 #: numba flags.  fastmath stays off: the NaN/inf guards and exact integer
 #: edge tests must not be compiled away (docs/architecture.md, Kernels).
 JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,

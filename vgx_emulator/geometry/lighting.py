@@ -23,6 +23,7 @@ import math
 
 import numpy as np
 
+from .. import pipeline
 from ..errors import fail
 from . import shade
 from .batch import COLOUR_SINCE_BIND
@@ -238,9 +239,21 @@ def shade_rgb(geom, mats, lights, model, out, lmcolor=(LMC_COLOR,), sign=1.0):
     redirect = np.array([_REDIRECT.get(int(m), 0) for m in lmcolor], np.int64)
     if len(redirect) < len(mats):
         redirect = np.resize(redirect, len(mats))
-    shade.light_vertices(idx, eye4, recs, nmats, renorm, _material_table(mats),
-                         COLOUR_SINCE_BIND, redirect,
-                         _light_table(lights), _model_row(model), float(sign), out)
+    tables = (_material_table(mats), COLOUR_SINCE_BIND, redirect, _light_table(lights),
+              _model_row(model), float(sign), out)
+    n, m = pipeline.split(len(idx), LIGHT_SHARE)
+    if m <= 1:
+        shade.light_vertices(idx, eye4, recs, nmats, renorm, *tables)
+        return
+    cuts = [len(idx) * k // m for k in range(m + 1)]
+    # shares of the lit vertices on the walker's threads (each writes its own rows)
+    pipeline.on_threads(lambda k: shade.light_vertices(idx[cuts[k]:cuts[k + 1]], eye4, recs,
+                                                       nmats, renorm, *tables), m, n)
+
+
+#: shade_rgb lights a batch of at least twice this many vertices in shares
+#: of at least this many on the walker's threads (pipeline.split)
+LIGHT_SHARE = 4096
 
 
 def shade_index(eye, normals, mats, lights, model, mid=None):

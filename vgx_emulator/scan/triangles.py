@@ -59,9 +59,7 @@ inlines them before compiling; a call would cost reference counting on
 each array), the others ``helper``.
 """
 import functools
-import itertools
 import math
-from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
@@ -231,15 +229,26 @@ def setup_triangles(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1,
     triangles have no rows.  Edge k is opposite vertex k, so E_k / area is
     the barycentric weight of vertex k.  (The arrays are made here, not in
     the kernel: with an empty cache numba's np.zeros in a kernel costs its
-    own compile.)"""
+    own compile.)  A large batch is set up in shares on the thread pool of
+    the walker (config.SETUP_SHARE) while the raster thread is idle."""
     t = len(tris)
     rec = np.zeros((t, T_COLUMNS), np.int64)
     inv_area = np.zeros(t)
     rows = np.empty((t, 2), np.int32)
     rows[:, 0], rows[:, 1] = 1, 0           # no row: culled, degenerate, off-scissor
     flags = np.array([interp, cmode, twoside], np.int64)
-    _setup_kernel(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1, flags,
-                  rec, inv_area, rows)
+    n, m = pipeline.split(t, config.SETUP_SHARE)
+    if m <= 1:
+        _setup_kernel(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1, flags,
+                      rec, inv_area, rows)
+        return rec, inv_area, rows
+    cuts = [t * k // m for k in range(m + 1)]
+
+    def share(k):
+        lo, hi = cuts[k], cuts[k + 1]
+        _setup_kernel(X, Y, Z, C, CB, prov[lo:hi], tris[lo:hi], cull, sx0, sx1, sy0, sy1,
+                      flags, rec[lo:hi], inv_area[lo:hi], rows[lo:hi])
+    pipeline.on_threads(share, m, n)
     return rec, inv_area, rows
 
 
@@ -357,9 +366,6 @@ def band_starts(sy0, sy1):
     return sy0 + order * config.BAND_ROWS
 
 
-_pool = None
-
-
 def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     """Run a compiled walker over every band: the band_starts list cut into
     config.SHARES_PER_THREAD shares per thread, which the threads take in
@@ -372,7 +378,6 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     threads or on which thread took which share.  Python threads rather
     than a numba ``prange``: numba's parallel lowering doubled the walker's
     compile time (cold start)."""
-    global _pool
     bands = band_starts(int(ip[fragment.P_SY0]), int(ip[fragment.P_SY1]))
     raster_thread = pipeline.on_raster_thread()
     n = 1
@@ -402,25 +407,7 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     if raster_thread:
         pipeline.shared(share, m)
         return
-    if _pool is None or _pool._max_workers < n - 1:
-        _pool = ThreadPoolExecutor(max_workers=max(n - 1, 1), thread_name_prefix="vgx-band")
-    taken = itertools.count()       # next() is atomic under the GIL
-
-    def worker():
-        k = next(taken)
-        while k < m:
-            share(k)
-            k = next(taken)
-
-    jobs = [_pool.submit(worker) for _ in range(n - 1)]
-    worker()
-    for job in jobs:
-        # a pool thread the OS has not run yet has no share left to take:
-        # cancel it rather than wait a time slice for it (on a busy machine
-        # that wait cost more than the second thread saved: Heidmann fig. 6
-        # 715 ms a frame against 156 ms on one thread)
-        if not job.cancel():
-            job.result()
+    pipeline.on_threads(share, m, n)
 
 
 @helper
