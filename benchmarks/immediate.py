@@ -305,12 +305,13 @@ def main(argv=None):
     tris_poly = tris[:a.polygons]
     emu = emulator(w, h, a.repeat, tris_poly, strips, ntm)
     gl = None
-    from vs_mesa import DIFF_THRESHOLD, diff_fraction
     if not a.no_mesa:
         try:
             gl = mesa(w, h, a.repeat, tris_poly, strips, ntm)
         except Exception as e:                # no PyOpenGL/OSMesa here
             print(f"(Mesa side skipped: {type(e).__name__}: {e})")
+    if gl:
+        from vs_mesa import DIFF_THRESHOLD, diff_fraction
     print(f"\n{w}x{h}, lit z-buffered height field, triangles of {area:.1f} px")
     head = "workload                 triangles   emulator M tri/s"
     if gl:
