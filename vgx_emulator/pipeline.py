@@ -161,9 +161,10 @@ def split(count, least):
     thread, in shares of at least ``least``: config.SHARES_PER_THREAD per
     thread, and m = 1 (run it at once) when there are fewer than two shares
     or the raster thread is busy (it holds the other core)."""
-    n = numba.get_num_threads() if config.PARALLEL and idle() else 1
-    m = min(n * config.SHARES_PER_THREAD, count // least) if n > 1 else 1
-    return n, max(m, 1)
+    if count < 2 * least or not config.PARALLEL or not idle():
+        return 1, 1                     # (before numba.get_num_threads: 3 us a call)
+    n = numba.get_num_threads()
+    return n, (min(n * config.SHARES_PER_THREAD, count // least) if n > 1 else 1)
 
 
 _pool = None
