@@ -440,3 +440,32 @@ def test_a_nan_colour_drops_its_primitive_with_a_warning(open_window):
     with pytest.warns(Warning, match="non-finite"):
         finish()
     assert (colour() == 0).all()
+
+
+@pytest.mark.parametrize("flush", [False, True])
+@pytest.mark.parametrize("count", [3, 200])
+def test_current_attributes_are_the_newest_events(open_window, flush, count):
+    # the window state takes the newest normal, colour and texture coordinate
+    # of the events sent since it last looked (VertexBatch.sync: a few events
+    # searched as a list, many as an array, at a flush the flush's own):
+    # gRGBcolor and the state read after `count` vertices give the last ones
+    from irisgl._current import machine
+    open_window(W, H)
+    bgnpoint()
+    for i in range(count):
+        n3f((0.0, 0.1 * (i % 7), 1.0))
+        c3i((i % 256, 7, 9))
+        if i % 3 == 0:
+            t2f((0.25 * i, 0.5))
+        v2f((1 + i % 40, 1 + i % 30))
+    cpack(0xFF332211)                                # after the last vertex: current too
+    n3f((0.5, 0.25, 0.125))
+    endpoint()
+    if flush:
+        machine.flush()                              # the batch's events go with it
+    st = machine.current.st
+    assert gRGBcolor() == (0x11, 0x22, 0x33)
+    assert st.normal == (0.5, 0.25, 0.125)
+    last_t = 0.25 * (3 * ((count - 1) // 3))
+    assert st.texcoord[:2] == (last_t, 0.5)
+    assert st.last_was_normal                        # n3f came after the colour
