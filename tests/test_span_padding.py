@@ -3,8 +3,8 @@
 The padding is an optimisation that must never change a pixel: the walker
 starts a short span's loop early (or ends it late) inside the row, and the
 extra pixels must fail like a 0 pattern bit.  Each scene is drawn with no
-padding (PAD_SPAN 0), with the default, and with every span padded (a
-huge PAD_SPAN), on banks that hold different values everywhere (so a
+padding (PAD_SPAN 0), with the default, and with every span of
+config.PAD_MIN pixels or more padded (a huge PAD_SPAN), on banks that hold different values everywhere (so a
 padding pixel that stored anything but its own old value shows), and the
 colour, z and stencil banks must be identical.  The scenes have many
 small triangles (spans of 1-12 pixels), spans at both ends of the row

@@ -331,6 +331,7 @@ def to_fixed(v, one):
 
 
 VEC = config.VEC
+PAD_MIN = config.PAD_MIN
 PLANE_LIMIT = config.PLANE_LIMIT
 
 
@@ -453,14 +454,15 @@ def z_hidden(zf, dz, xl, xr, zlo, zhi, zrow):
 
 @helper
 def padded_span(xl, xr, padspan, wid):
-    """(first pixel, count) of the loop over the span [xl, xr]: a span
-    shorter than ``padspan`` (config.PAD_SPAN) runs over whole vectors of
-    VEC pixels, at least two, inside a row of ``wid`` pixels: the loop ends
-    late or, near the row's end, starts early.  The pixels outside [xl, xr]
-    fail like a 0 pattern bit and store what they hold."""
+    """(first pixel, count) of the loop over the span [xl, xr]: a span of
+    config.PAD_MIN pixels or more but shorter than ``padspan``
+    (config.PAD_SPAN) runs over whole vectors of VEC pixels, at least two,
+    inside a row of ``wid`` pixels: the loop ends late or, near the row's
+    end, starts early.  The pixels outside [xl, xr] fail like a 0 pattern
+    bit and store what they hold."""
     lo = xl
     nv = xr + 1 - xl
-    if nv < padspan:
+    if PAD_MIN <= nv < padspan:
         n = max((nv + VEC - 1) & -VEC, 2 * VEC)
         if n <= wid:
             return min(xl, wid - n), n
