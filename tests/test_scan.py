@@ -928,3 +928,51 @@ def test_kernel_variants_have_distinct_cache_keys(field):
         a, b = tag(make(*base)), tag(make(*other))
         assert a != b
         assert a.startswith(jit.KERNEL_SOURCE_HASH) and repr(tuple(base)) in a
+
+
+def _setup_inputs(seed, t, cull_some):
+    """Window fixed-point vertices (scan.fixed SHIFT bits), colours and
+    triangles for setup_triangles; with ``cull_some`` a third of the
+    triangles clockwise (culled under CULL_BACK) and some degenerate."""
+    from vgx_emulator.scan.fixed import SHIFT
+    rng = np.random.default_rng(seed)
+    nv = 3 * t
+    X = (rng.uniform(0, 60, nv) * (1 << SHIFT)).astype(np.int64)
+    Y = (rng.uniform(0, 40, nv) * (1 << SHIFT)).astype(np.int64)
+    Z = rng.uniform(0, 1000, nv)
+    C = rng.uniform(0, 255, (nv, 4))
+    tris = np.arange(nv, dtype=np.int64).reshape(t, 3)
+    if cull_some:
+        tris[::3] = tris[::3, ::-1].copy()           # some reversed
+        tris[1::7, 2] = tris[1::7, 1]                # some degenerate
+    return X, Y, Z, C, C, tris[:, 2].copy(), tris
+
+
+def test_setup_records_reused_only_when_free_and_as_if_new():
+    """setup_triangles takes the last batch's records when nothing holds
+    them (scan.triangles._records) and writes every record a drawn triangle
+    has: a batch set up into the records of another (different triangles,
+    culled ones, FLAT after Gouraud) equals the same batch set up into new
+    ones, row for row where drawn."""
+    from vgx_emulator.scan import triangles as T
+    t = 500
+    a = T.setup_triangles(*_setup_inputs(1, t, False), T.CULL_NONE, 0, 63, 0, 47,
+                          interp=True)
+    held = a[0]
+    b = T.setup_triangles(*_setup_inputs(2, t, True), T.CULL_BACK, 0, 63, 0, 47)
+    assert b[0] is not held                          # a still holds its records
+    del a, b, held
+    T._spare.clear()
+    fresh = T.setup_triangles(*_setup_inputs(2, t, True), T.CULL_BACK, 0, 63, 0, 47)
+    T._spare.clear()
+    first = T.setup_triangles(*_setup_inputs(1, t, False), T.CULL_NONE, 0, 63, 0, 47,
+                              interp=True)
+    mark = id(first[0])
+    del first
+    again = T.setup_triangles(*_setup_inputs(2, t, True), T.CULL_BACK, 0, 63, 0, 47)
+    assert id(again[0]) == mark                      # the free records were taken
+    drawn = fresh[2][:, 0] <= fresh[2][:, 1]
+    assert 0 < drawn.sum() < t
+    np.testing.assert_array_equal(again[2], fresh[2])
+    np.testing.assert_array_equal(again[0][drawn], fresh[0][drawn])
+    np.testing.assert_array_equal(again[1][drawn], fresh[1][drawn])

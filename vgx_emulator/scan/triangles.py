@@ -60,6 +60,7 @@ each array), the others ``helper``.
 """
 import functools
 import math
+import sys
 
 import numba
 import numpy as np
@@ -197,6 +198,8 @@ def triangle_planes(rec, i, X, Y, Z, cols, pv, ia, interp, cmode):
     rec[i, T_WORD] = fragment.colour_word(cmode, cols[pv, 0], cols[pv, 1], cols[pv, 2],
                                           cols[pv, 3])
     if not interp:
+        for k in range(13):             # the colour planes and T_COK: unused, but defined
+            rec[i, T_COLOUR + k] = 0
         return
     cok = True
     for k in range(4):
@@ -218,6 +221,25 @@ def triangle_planes(rec, i, X, Y, Z, cols, pv, ia, interp, cmode):
 _setup_kernel = _make_setup()
 
 
+#: the setup records of the last batch set up: the next batch of as many
+#: triangles takes them once no pass holds them any more (a display list
+#: replayed every frame; a new 12 MB array faulted its pages in again:
+#: 0.4 ms of a 40k-triangle setup)
+_spare = []
+
+
+def _records(t):
+    """A (t, T_COLUMNS) int64 array for setup_triangles: the spare one when
+    it has t rows and nothing else refers to it, else a new one."""
+    rec = _spare.pop() if _spare else None      # (pop: atomic between threads)
+    # the references: ``rec`` and getrefcount's argument; a queued or
+    # running pass holding its setup adds its own
+    if rec is None or len(rec) != t or sys.getrefcount(rec) != 2:
+        rec = np.zeros((t, T_COLUMNS), np.int64)
+    _spare[:] = [rec]
+    return rec
+
+
 def setup_triangles(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1,
                     interp=False, cmode=False, twoside=False):
     """Triangle setup for T triangles: (rec (T, T_COLUMNS) int64, inv_area
@@ -230,9 +252,11 @@ def setup_triangles(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1,
     the barycentric weight of vertex k.  (The arrays are made here, not in
     the kernel: with an empty cache numba's np.zeros in a kernel costs its
     own compile.)  A large batch is set up in shares on the thread pool of
-    the walker (config.SETUP_SHARE) while the raster thread is idle."""
+    the walker (config.SETUP_SHARE) while the raster thread is idle.  The
+    records of a drawn triangle are written whole; those of a triangle
+    without rows are not read."""
     t = len(tris)
-    rec = np.zeros((t, T_COLUMNS), np.int64)
+    rec = _records(t)
     inv_area = np.zeros(t)
     rows = np.empty((t, 2), np.int32)
     rows[:, 0], rows[:, 1] = 1, 0           # no row: culled, degenerate, off-scissor
