@@ -508,7 +508,7 @@ class VGX:
         b.open = None
         if win is self.W:
             self.V = _closed
-        if b.vbase + (len(b.pos) >> 2) >= config.FLUSH_VERTICES:
+        if b.nverts >= config.FLUSH_VERTICES:
             self._flush(win)                # the raster thread draws while the program goes on
         if self.display_hook is not None:
             self.display_hook(win)          # a real window: drawing shows as it happens

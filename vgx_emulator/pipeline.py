@@ -167,6 +167,18 @@ def split(count, least):
     return n, (min(n * config.SHARES_PER_THREAD, count // least) if n > 1 else 1)
 
 
+def in_shares(run, count, least):
+    """run(lo, hi) over [0, count): at once, or in the shares that
+    :func:`split` gives, on :func:`on_threads` (each share writes its own
+    rows of the outputs)."""
+    n, m = split(count, least)
+    if m <= 1:
+        run(0, count)
+        return
+    cuts = [count * k // m for k in range(m + 1)]
+    on_threads(lambda k: run(cuts[k], cuts[k + 1]), m, n)
+
+
 _pool = None
 
 

@@ -241,14 +241,10 @@ def shade_rgb(geom, mats, lights, model, out, lmcolor=(LMC_COLOR,), sign=1.0):
         redirect = np.resize(redirect, len(mats))
     tables = (_material_table(mats), COLOUR_SINCE_BIND, redirect, _light_table(lights),
               _model_row(model), float(sign), out)
-    n, m = pipeline.split(len(idx), LIGHT_SHARE)
-    if m <= 1:
-        shade.light_vertices(idx, eye4, recs, nmats, renorm, *tables)
-        return
-    cuts = [len(idx) * k // m for k in range(m + 1)]
-    # shares of the lit vertices on the walker's threads (each writes its own rows)
-    pipeline.on_threads(lambda k: shade.light_vertices(idx[cuts[k]:cuts[k + 1]], eye4, recs,
-                                                       nmats, renorm, *tables), m, n)
+    # a large batch: shares of the lit vertices on the walker's threads
+    pipeline.in_shares(lambda lo, hi: shade.light_vertices(idx[lo:hi], eye4, recs, nmats,
+                                                           renorm, *tables),
+                       len(idx), LIGHT_SHARE)
 
 
 #: shade_rgb lights a batch of at least twice this many vertices in shares

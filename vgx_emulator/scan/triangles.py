@@ -261,18 +261,11 @@ def setup_triangles(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1,
     rows = np.empty((t, 2), np.int32)
     rows[:, 0], rows[:, 1] = 1, 0           # no row: culled, degenerate, off-scissor
     flags = np.array([interp, cmode, twoside], np.int64)
-    n, m = pipeline.split(t, config.SETUP_SHARE)
-    if m <= 1:
-        _setup_kernel(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1, flags,
-                      rec, inv_area, rows)
-        return rec, inv_area, rows
-    cuts = [t * k // m for k in range(m + 1)]
 
-    def share(k):
-        lo, hi = cuts[k], cuts[k + 1]
+    def share(lo, hi):
         _setup_kernel(X, Y, Z, C, CB, prov[lo:hi], tris[lo:hi], cull, sx0, sx1, sy0, sy1,
                       flags, rec[lo:hi], inv_area[lo:hi], rows[lo:hi])
-    pipeline.on_threads(share, m, n)
+    pipeline.in_shares(share, t, config.SETUP_SHARE)
     return rec, inv_area, rows
 
 
