@@ -248,7 +248,7 @@ def shade_rgb(geom, mats, lights, model, out, lmcolor=(LMC_COLOR,), sign=1.0):
 
 
 #: shade_rgb lights a batch of at least twice this many vertices in shares
-#: of at least this many on the walker's threads (pipeline.split)
+#: of at least this many on the walker's threads (pipeline.in_shares)
 LIGHT_SHARE = 4096
 
 
