@@ -101,7 +101,7 @@ def per_vertex(ev, recs, n, mats):
     sent while a material is bound.  One compiled pass over the vertices
     and the events in stream order (an event applies from the vertex whose
     x was ``pos[at]`` on)."""
-    out = np.empty((n, RECORD))
+    out = np.zeros((n, RECORD))         # (events before vertex 0's record read zeros)
     if n:
         first = np.flatnonzero(ev[:, 1] == EV_REC)[:1]
         if not len(first) or ev[first[0], 0] > 0:
@@ -114,42 +114,51 @@ def per_vertex(ev, recs, n, mats):
 @njit
 def _replay(ev, recs, bound, out):
     """per_vertex's pass: the current attributes, updated event by event,
-    copied to each vertex (the colour kinds converted as colour_value)."""
-    cur = np.zeros(recs.shape[1])      # (the first vertex's record replaces it)
+    copied to each vertex (the colour kinds converted as colour_value).
+    Written with scalar loops only: whole-row assignments, np.zeros and
+    np.isfinite made numba compile its array helpers too (3.5 s of a cold
+    start against 0.6 s; benchmarks/compile_cost.py)."""
+    nc = out.shape[1]
     j = 0
     m = ev.shape[0]
     for i in range(out.shape[0]):
+        row = out[i]
+        if i:                           # (vertex 0 always has a record: per_vertex)
+            for k in range(nc):
+                row[k] = out[i - 1, k]
         while j < m and ev[j, 0] <= 4 * i:
             kind = int(ev[j, 1])
             if kind == EV_REC:
-                cur[:] = recs[int(ev[j, 2])]
+                src = int(ev[j, 2])
+                for k in range(nc):
+                    row[k] = recs[src, k]
             elif kind == EV_NORMAL:
-                cur[0] = ev[j, 2]
-                cur[1] = ev[j, 3]
-                cur[2] = ev[j, 4]
-                cur[R_FLAGS] = (int(cur[R_FLAGS]) & COLOUR_SINCE_BIND) | LAST_WAS_NORMAL
+                row[0] = ev[j, 2]
+                row[1] = ev[j, 3]
+                row[2] = ev[j, 4]
+                row[R_FLAGS] = (int(row[R_FLAGS]) & COLOUR_SINCE_BIND) | LAST_WAS_NORMAL
             elif kind == EV_TEX:
                 for k in range(4):
-                    cur[9 + k] = ev[j, 2 + k]
+                    row[9 + k] = ev[j, 2 + k]
             else:
                 if kind == EV_CPACK:
-                    w = np.int64(ev[j, 2])
+                    w = int(ev[j, 2])
                     for k in range(4):
-                        cur[3 + k] = np.float64((w >> (8 * k)) & 0xFF)
+                        row[3 + k] = float((w >> (8 * k)) & 0xFF)
                 else:
                     for k in range(4):
                         v = ev[j, 2 + k]
+                        finite = v - v == 0.0
                         if kind == EV_UNIT:
-                            if np.isfinite(v):
+                            if finite:
                                 v = min(max(v, 0.0), 1.0)
                             v = v * 255.0
-                        elif kind == EV_BYTE and np.isfinite(v):
+                        elif kind == EV_BYTE and finite:
                             v = min(max(v, 0.0), 255.0)
-                        cur[3 + k] = v
-                since = COLOUR_SINCE_BIND if bound[int(cur[R_MATERIAL])] else 0
-                cur[R_FLAGS] = (int(cur[R_FLAGS]) & COLOUR_SINCE_BIND) | since
+                        row[3 + k] = v
+                since = COLOUR_SINCE_BIND if bound[int(row[R_MATERIAL])] else 0
+                row[R_FLAGS] = (int(row[R_FLAGS]) & COLOUR_SINCE_BIND) | since
             j += 1
-        out[i] = cur
 
 
 #: sync: from this many new events the kinds are searched as one array
