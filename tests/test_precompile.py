@@ -77,3 +77,37 @@ def test_nothing_is_started_without_compiling(tmp_path, env):
     probe = ("import vgx_emulator.precompile as p, vgx_emulator\n"
              "print(bool(p._started and p._started[0]))\n")
     assert _python(probe, tmp_path / "n", **env) == ["False"]
+
+
+def _ended(pid):
+    """Whether process ``pid`` has ended (gone, or a zombie nobody reaped)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] == "Z"
+    except OSError:
+        return True
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
+def test_the_second_process_ends_when_its_cache_is_removed(tmp_path):
+    """A program on a temporary cache starts the second process and ends;
+    the cache directory is removed while the second process compiles: the
+    second process ends within seconds (instead of compiling on for
+    nobody) and does not make the directory again."""
+    import shutil
+    import time
+    cache = tmp_path / "c"
+    cache.mkdir()
+    probe = ("import vgx_emulator.precompile as p, vgx_emulator\n"
+             "print(p._started[0].pid)\n")
+    pid = int(_python(probe, cache)[-1])
+    assert not _ended(pid)              # (the compile takes seconds: still running)
+    shutil.rmtree(cache, ignore_errors=True)
+    deadline = time.monotonic() + 20
+    while not _ended(pid) and time.monotonic() < deadline:
+        shutil.rmtree(cache, ignore_errors=True)    # (one save may race the removal)
+        time.sleep(0.1)
+    assert _ended(pid)
+    shutil.rmtree(cache, ignore_errors=True)
+    time.sleep(0.5)
+    assert not cache.exists()

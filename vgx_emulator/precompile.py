@@ -24,11 +24,15 @@ spheres does not draw (lines, points, rectangles, text, pixel writes).
 
 It runs once per cache (a warm cache starts nothing), only with more than
 one core, and never from itself; ``VGX_PRECOMPILE=0`` turns it off (the
-compile-cost benchmark does, to time each kernel apart).
+compile-cost benchmark does, to time each kernel apart).  It outlives the
+program when the program ends first (what it saves serves the next
+process), but not a cache directory that is removed (:func:`stop_with_cache`).
 """
 import os
 import subprocess
 import sys
+import threading
+import time
 
 import numpy as np
 
@@ -73,6 +77,39 @@ def start_if_cold():
     return p
 
 
+def stop_with_cache(period=0.2):
+    """In a second process (this module's, or specialise.serve's): end it
+    as soon as the directory of ``NUMBA_CACHE_DIR`` it fills is removed (a
+    test's or benchmark's temporary cache, deleted once its own process is
+    done).  Left alone, such a process compiled on for nobody and numba
+    made the directory again to save into it.  The directory is held open
+    and watched from a thread (a removed directory has no links left, even
+    if a directory of the same name is made again); the default cache,
+    beside the sources, is not watched.  Returns the thread, or None."""
+    import numba
+    root = numba.config.CACHE_DIR
+    if not root:
+        return None
+    try:
+        fd = os.open(root, os.O_RDONLY | os.O_DIRECTORY)
+    except OSError:                     # already gone (or unreadable): nothing to fill
+        os._exit(0)
+
+    def watch():
+        while True:
+            try:
+                gone = os.fstat(fd).st_nlink == 0
+            except OSError:
+                gone = True
+            if gone:
+                os._exit(0)
+            time.sleep(period)
+
+    t = threading.Thread(target=watch, name="vgx-cache-watch", daemon=True)
+    t.start()
+    return t
+
+
 def running():
     """Whether the second process of this cold start is still compiling."""
     return bool(_started and _started[0] is not None and _started[0].poll() is None)
@@ -98,6 +135,7 @@ def warm(keys=None):
     from .raster import variants
     from . import scan, specialise
     from .state import WindowState
+    stop_with_cache()
     specialise.MODE = "0"               # each key's own walker
     fb = Framebuffer(8, 8)
     if keys is None:

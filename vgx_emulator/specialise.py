@@ -192,6 +192,7 @@ def serve(stream=None):
     """The second process: compile each ``(kind, key, types)`` read
     (pickled) from stdin into the disk cache.  A failing one is skipped."""
     from .raster.variants import RasterKey
+    precompile.stop_with_cache()
     lower_priority()
     for kind, key, types in pickle.load(stream or sys.stdin.buffer):
         try:
