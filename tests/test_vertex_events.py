@@ -74,3 +74,29 @@ def test_per_vertex_matches_the_stream_replayed(seed, nrecs, kinds):
     got = per_vertex(ev, recs, n, MATS)
     want = _replayed(ev, recs, n, MATS)
     assert np.array_equal(got, want)
+
+
+NAN, INF = float("nan"), float("inf")
+
+
+@pytest.mark.parametrize("kind, values, want", [
+    # c3f/c4f (3G): 0.0-1.0 components, clamped, times 255 (huge finite ones too)
+    (EV_UNIT, (0.5, 2.0, -1.0, 1e301), (127.5, 255.0, 0.0, 255.0)),
+    # c3i/c3s/RGBcolor (3G): 0-255 components, clamped
+    (EV_BYTE, (12.0, 300.0, -4.0, 255.0), (12.0, 255.0, 0.0, 255.0)),
+    # cpack(3G): 0xAABBGGRR
+    (EV_CPACK, (float(0x80FF1002), 0, 0, 0), (2.0, 16.0, 255.0, 128.0)),
+    # an index or a final colour passes as it is
+    (EV_COLOUR, (7.0, 300.0, -1.0, 0.25), (7.0, 300.0, -1.0, 0.25)),
+    # non-finite components pass (the flush drops the primitive with a warning)
+    (EV_UNIT, (NAN, INF, -INF, 0.0), (NAN, INF, -INF, 0.0)),
+    (EV_BYTE, (NAN, INF, -INF, 1.0), (NAN, INF, -INF, 1.0)),
+])
+def test_colour_events_convert_as_the_man_pages_say(kind, values, want):
+    """colour_value (the state a flush leaves) and per_vertex's compiled
+    pass (each vertex's colour) give the same 0..255 components, as the
+    colour calls' man pages define them."""
+    assert np.array_equal(colour_value(kind, *values), want, equal_nan=True)
+    ev = np.array([(0, EV_REC, 0, 0, 0, 0), (0, kind, *values)], np.float64)
+    got = per_vertex(ev, np.zeros((1, RECORD)), 1, MATS)[0, R_COLOUR]
+    assert np.array_equal(got, want, equal_nan=True)

@@ -24,7 +24,7 @@ between classes is kept by flushing on a change.
 """
 import numpy as np
 
-from ..jit import njit
+from ..jit import helper, njit
 from .assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
 
 FILLED, LINES, POINTS = 0, 1, 2
@@ -55,22 +55,29 @@ COLOUR_KINDS = (EV_COLOUR, EV_UNIT, EV_BYTE, EV_CPACK)
 EVW = 6
 
 
-def _clamped(v, top):
-    """v clamped to 0..top; NaN and +-inf pass (the flush drops the primitive
-    with a warning)."""
-    return min(max(v, 0.0), top) if -1e300 < v < 1e300 else v
+@helper
+def colour_component(kind, k, a, v):
+    """Component ``k`` (0..3: R, G, B, A) of a colour event as a 0..255
+    float (c3f(3G), cpack(3G) ...): ``v`` the event's k-th value, ``a`` its
+    first (the cpack word).  EV_UNIT and EV_BYTE values are clamped; NaN
+    and +-inf pass (the flush drops the primitive with a warning).  One
+    definition for both users: compiled into per_vertex's pass, and as
+    plain Python (``py_func``) in colour_value."""
+    if kind == EV_CPACK:
+        return float((int(a) >> (8 * k)) & 0xFF)
+    v = float(v)
+    finite = v - v == 0.0
+    if kind == EV_UNIT:
+        return (min(max(v, 0.0), 1.0) if finite else v) * 255.0
+    if kind == EV_BYTE and finite:
+        return min(max(v, 0.0), 255.0)
+    return v
 
 
 def colour_value(kind, a, b, c, d):
-    """The 0..255 RGBA floats of one colour event (c3f(3G), cpack(3G) ...)."""
-    if kind == EV_COLOUR:
-        return (float(a), float(b), float(c), float(d))
-    if kind == EV_UNIT:
-        return tuple(_clamped(float(v), 1.0) * 255.0 for v in (a, b, c, d))
-    if kind == EV_BYTE:
-        return tuple(_clamped(float(v), 255.0) for v in (a, b, c, d))
-    w = int(a)
-    return (float(w & 0xFF), float(w >> 8 & 0xFF), float(w >> 16 & 0xFF), float(w >> 24 & 0xFF))
+    """The 0..255 RGBA floats of one colour event (colour_component)."""
+    one = colour_component.py_func
+    return tuple(one(kind, k, a, v) for k, v in enumerate((float(a), float(b), float(c), float(d))))
 
 
 class Transform:
@@ -114,7 +121,7 @@ def per_vertex(ev, recs, n, mats):
 @njit
 def _replay(ev, recs, bound, out):
     """per_vertex's pass: the current attributes, updated event by event,
-    copied to each vertex (the colour kinds converted as colour_value).
+    copied to each vertex (the colour kinds converted by colour_component).
     Written with scalar loops only: whole-row assignments, np.zeros and
     np.isfinite made numba compile its array helpers too (3.5 s of a cold
     start against 0.6 s; benchmarks/compile_cost.py)."""
@@ -141,21 +148,8 @@ def _replay(ev, recs, bound, out):
                 for k in range(4):
                     row[9 + k] = ev[j, 2 + k]
             else:
-                if kind == EV_CPACK:
-                    w = int(ev[j, 2])
-                    for k in range(4):
-                        row[3 + k] = float((w >> (8 * k)) & 0xFF)
-                else:
-                    for k in range(4):
-                        v = ev[j, 2 + k]
-                        finite = v - v == 0.0
-                        if kind == EV_UNIT:
-                            if finite:
-                                v = min(max(v, 0.0), 1.0)
-                            v = v * 255.0
-                        elif kind == EV_BYTE and finite:
-                            v = min(max(v, 0.0), 255.0)
-                        row[3 + k] = v
+                for k in range(4):
+                    row[3 + k] = colour_component(kind, k, ev[j, 2], ev[j, 2 + k])
                 since = COLOUR_SINCE_BIND if bound[int(row[R_MATERIAL])] else 0
                 row[R_FLAGS] = (int(row[R_FLAGS]) & COLOUR_SINCE_BIND) | since
             j += 1
