@@ -479,7 +479,7 @@ def test_window_fixed_places_only_vertices_inside_the_limits():
     v = np.array([[0, 0, 0.5, 1], [0.5, 0, 0, 1], [0, 0.5, zl, 1],
                   [0, 0, np.nan, 1], [0, 0, -zl, 1]], float)
     tris = np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4], [0, 1, 1]])
-    X, Y, Z, ok, lost = viewport.window_fixed(v, tris, vp, dr, False)
+    X, Y, Z, ok, lost, _ = viewport.window_fixed(v, tris, vp, dr, False)
     assert ok.tolist() == [True, True, False, False, False]
     assert lost.tolist() == [True, True, True, False]
     assert Z[0] == pytest.approx(0x7FFFFF * 0.75)

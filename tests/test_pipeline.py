@@ -70,7 +70,9 @@ def test_every_figure_draws_the_same_pipelined(prog, fig, monkeypatch):
 
 def _slow_raster(monkeypatch, seconds=0.05):
     """Every queued pass first sleeps: work is surely still queued when the
-    program's next call runs."""
+    program's next call runs.  Small passes are queued too (not drawn at
+    once: config.INLINE_TRIANGLES)."""
+    monkeypatch.setattr(config, "INLINE_TRIANGLES", -1)
     real = machine_module._raster_pass
 
     def slow(*args):
@@ -282,3 +284,33 @@ def test_setup_and_lighting_in_shares_draw_the_same(open_window, monkeypatch):
     assert (whole[0] != 0).sum() > 2000
     assert np.array_equal(whole[0], shared[0])
     assert np.array_equal(whole[1], shared[1])
+
+
+def test_a_small_pass_is_drawn_at_once_when_the_raster_thread_is_idle(open_window,
+                                                                      monkeypatch):
+    """A pass of few triangles over a small box (config.INLINE_TRIANGLES,
+    INLINE_PIXELS) is drawn on the program's thread when nothing is queued:
+    nothing is pending after its flush.  Queued behind a slow clear it
+    waits its turn instead, and the pixels are those of the order the calls
+    were made in."""
+    monkeypatch.setattr(config, "PIPELINE", True)
+    open_window(32, 32, pixels=True, cleared=True)
+    pipeline.sync()                        # (the window's clear)
+    cpack(0xFF0000FF)
+    _square(4, 4, 12, 12)
+    machine.flush()
+    assert not pipeline.pending()
+    assert machine.current.fb.front[8, 8] == 0xFF0000FF
+    real = machine_module._kernel_calls
+
+    def slow(*args):
+        time.sleep(0.2)
+        real(*args)
+    monkeypatch.setattr(machine_module, "_kernel_calls", slow)
+    clear()                                # (in the current red) queued, slow
+    cpack(0xFF00FF00)
+    _square(4, 4, 12, 12)
+    machine.flush()
+    assert pipeline.pending()              # the square waits behind the clear
+    front = machine.current.fb.front
+    assert front[8, 8] == 0xFF00FF00 and front[20, 20] == 0xFF0000FF

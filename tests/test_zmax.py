@@ -147,7 +147,7 @@ def test_a_pass_that_changes_no_z_keeps_the_maxima(open_window, vgx):
     z_bank()
     assert not fb.zmax_fresh
     fresh = zmax.empty(H, W)
-    zmax.build(fb.z, fresh)
+    zmax.build(fb.z, fresh, 0, W - 1, 0, H - 1)
     np.testing.assert_array_equal(fb.z_maxima(), fresh)
 
 
@@ -157,7 +157,103 @@ def test_build_takes_the_maximum_of_every_segment(width):
     rnd = np.random.default_rng(width)
     z = rnd.integers(-0x800000, 0x800000, (7, width)).astype(np.int32)
     out = zmax.empty(7, width)
-    zmax.build(z, out)
+    zmax.build(z, out, 0, width - 1, 0, 6)
     for y in range(7):
         for s in range(out.shape[1]):
             assert out[y, s] == z[y, s * zmax.SEGMENT:(s + 1) * zmax.SEGMENT].max()
+
+
+def _small_tri(rnd, x, y, size, z):
+    bgnpolygon()
+    for dx, dy in ((0, 0), (size, 0), (0, size)):
+        c4i((255, int(rnd.integers(0, 256)), 0, 255))
+        v3f((x + dx, y + dy, z + float(rnd.uniform(-0.05, 0.05))))
+    endpolygon()
+
+
+def test_a_small_pass_marks_only_its_box(open_window, vgx, monkeypatch):
+    """A pass that writes z marks the pixels its vertices span (within the
+    scissor), not the window; the next use rebuilds that rectangle only,
+    and the maxima equal those built from scratch.  Marks made before a
+    use are joined (z_written)."""
+    from vgx_emulator.framebuffer import zmax
+    open_window(W, H)
+    ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
+    zbuffer(TRUE)
+    czclear(0, getgdesc(GD_ZMAX))
+    fb = vgx.current.fb
+    fb.z_maxima()
+    _small_tri(np.random.default_rng(0), 40.25, 20.25, 6.0, 0.0)
+    z_bank()                                            # (flushes)
+    # (this ortho puts window x at object x + 0.5): the floor of the
+    # vertices' extent 40.75..46.75, 20.75..26.75
+    assert fb.zmax_dirty == (40, 46, 20, 26)
+    scrmask(0, 43, 0, H - 1)
+    _small_tri(np.random.default_rng(0), 40.25, 30.25, 6.0, 0.0)
+    z_bank()
+    # the second pass read the maxima (rebuilt over the first box), then
+    # marked its own box, cut at the scissor
+    assert fb.zmax_dirty == (40, 43, 30, 36)
+    fresh = zmax.empty(H, W)
+    zmax.build(fb.z, fresh, 0, W - 1, 0, H - 1)
+    built = []
+    build = zmax.build
+    monkeypatch.setattr(zmax, "build", lambda z, out, *rect: built.append(rect) or
+                        build(z, out, *rect))
+    np.testing.assert_array_equal(fb.z_maxima(), fresh)
+    assert built == [(40, 43, 30, 36)]
+    fb.z_written(box=(3, 5, 1, 2))
+    fb.z_written(box=(9, 8, 0, 60))                     # empty: nothing
+    fb.z_written(box=(7, 20, 4, 4))
+    assert fb.zmax_dirty == (3, 20, 1, 4)
+    fb.z_written()                                      # anywhere
+    assert fb.zmax_dirty == (0, W - 1, 0, H - 1)
+
+
+@pytest.mark.parametrize("seed", [4, 5])
+def test_maxima_rebuilt_where_written_equal_a_whole_rebuild(open_window, vgx, seed):
+    """Small triangles anywhere (partly outside the window), every z
+    function, scissored passes and partial clears: after each pass the
+    maxima a pass would read equal those built from the whole bank."""
+    from vgx_emulator.framebuffer import zmax
+    open_window(W, H)
+    ortho(-0.5, W - 0.5, -0.5, H - 0.5, -1.0, 1.0)
+    zbuffer(TRUE)
+    czclear(0, -0x700000)           # (far below the triangles: each pass moves maxima)
+    fb = vgx.current.fb
+    rnd = np.random.default_rng(seed)
+    fresh = zmax.empty(H, W)
+    fb.z_maxima()
+    moved = 0
+    for i in range(40):
+        zfunction(int(rnd.choice([ZF_LESS, ZF_LEQUAL, ZF_GREATER, ZF_ALWAYS])))
+        if i % 7 == 3:
+            x0, y0 = int(rnd.integers(0, W - 10)), int(rnd.integers(0, H - 10))
+            scrmask(x0, x0 + int(rnd.integers(0, 30)), y0, y0 + int(rnd.integers(0, 20)))
+            zclear() if i % 2 else _small_tri(rnd, float(x0), float(y0), 20.0, -0.5)
+            scrmask(0, W - 1, 0, H - 1)
+        _small_tri(rnd, float(rnd.uniform(-8, W)), float(rnd.uniform(-8, H)),
+                   float(rnd.uniform(1, 40)), float(rnd.uniform(-0.9, 0.9)))
+        z_bank()
+        before = fb.zmax.copy()
+        zmax.build(fb.z, fresh, 0, W - 1, 0, H - 1)
+        np.testing.assert_array_equal(fb.z_maxima(), fresh)
+        moved += not np.array_equal(before, fresh)
+    assert moved >= 20                  # (the passes did move the maxima)
+
+
+@pytest.mark.parametrize("x0, x1", [(0, 36), (5, 5), (16, 31), (17, 36), (33, 36), (30, 34)])
+def test_build_of_a_rectangle_touches_its_segments_only(x0, x1):
+    """build over pixels x0..x1 of rows 2..4 writes exactly the segments
+    holding them (the last, partial one included), each the maximum of its
+    whole segment."""
+    from vgx_emulator.framebuffer import zmax
+    rnd = np.random.default_rng(x0 * 100 + x1)
+    z = rnd.integers(-0x800000, 0x800000, (7, 37)).astype(np.int32)
+    out = np.full((7, 3), 7, np.int32)
+    zmax.build(z, out, x0, x1, 2, 4)
+    want = np.full((7, 3), 7, np.int32)
+    for y in range(2, 5):
+        for s in range(x0 // zmax.SEGMENT, x1 // zmax.SEGMENT + 1):
+            want[y, s] = z[y, s * zmax.SEGMENT:(s + 1) * zmax.SEGMENT].max()
+    np.testing.assert_array_equal(out, want)

@@ -106,6 +106,14 @@ QUEUE_LENGTH = 101
 #: The largest polygon (bgnpolygon(3G), GD_NVERTEX_POLY).
 MAX_POLYGON_VERTICES = 256
 
+#: a pass of at most this many triangles over a box of at most this many
+#: pixels is drawn at once on the program's thread when the raster thread
+#: is idle (pipeline.submit ``now``): waking that thread and trading the
+#: GIL with it cost more than such a pass (a one-triangle lit pass at
+#: 640x480: 430 -> 280 us a flush)
+INLINE_TRIANGLES = 256
+INLINE_PIXELS = 1 << 14
+
 #: An immediate-mode batch is flushed at the end* that brings it to this
 #: many vertices: the raster thread then draws it while the program sends
 #: the next ones, as the VGX's Geometry Pipeline drew while the host ran

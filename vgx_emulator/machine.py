@@ -357,7 +357,8 @@ class VGX:
             cull = (CULL_BACK if st.backface else CULL_NONE) | \
                    (CULL_FRONT if st.frontface else CULL_NONE)
             pipeline.submit(_raster_pass, win.fb, work, key, planes, ip, cull,
-                            not st.subpixel, tex, zfar, scan.setup_batch(work, key, ip, cull))
+                            not st.subpixel, tex, zfar, scan.setup_batch(work, key, ip, cull),
+                            now=_small_pass(work))
             if self.trace_hook is not None:
                 self.trace_hook(self, win, "draw")
         if b.open is not None:
@@ -926,14 +927,29 @@ def _raster_pass(fb, work, key, planes, ip, cull, closed_lines, tex, zfar, setup
     against them (zfar: VGX._z_maxima_bound), scan conversion, and the
     maxima marked stale when the pass changed a stored z (the walker
     reports it: a redraw with ZF_LEQUAL or ZF_EQUAL of the surfaces already
-    in the z bank keeps them) or wrote z as lines or points."""
+    in the z bank keeps them), over the triangles' box within the scissor,
+    or wrote z as lines or points (anywhere)."""
     zmaxima = None
     if zfar is not None and not (fb.zmax_uniform is not None and fb.zmax_uniform >= zfar):
         zmaxima = fb.z_maxima()     # (uniform at the far end: no span can fail)
     ip[fragment.P_ZMAX] = zmaxima is not None
     scan.scan_batch(work, key, planes, ip, cull, closed_lines, tex, zmaxima, setup)
     if key.zwrite and (work.klass != FILLED or ip[fragment.P_ZCHANGED]):
-        fb.z_written()
+        b = work.box if work.klass == FILLED else None
+        fb.z_written(box=None if b is None else (
+            max(b[0], int(ip[fragment.P_SX0])), min(b[1], int(ip[fragment.P_SX1])),
+            max(b[2], int(ip[fragment.P_SY0])), min(b[3], int(ip[fragment.P_SY1]))))
+
+
+def _small_pass(work):
+    """Whether a pass is small enough to draw at once rather than hand to
+    the raster thread (config.INLINE_TRIANGLES, INLINE_PIXELS): filled,
+    with few triangles over a small box."""
+    b = work.box
+    if work.klass != FILLED or b is None or work.tris is None or \
+            len(work.tris) > config.INLINE_TRIANGLES:
+        return False
+    return (b[1] - b[0] + 1) * (b[3] - b[2] + 1) <= config.INLINE_PIXELS
 
 
 def _kernel_calls(fb, calls, zrect=None, zvalue=None):

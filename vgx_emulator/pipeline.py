@@ -129,9 +129,12 @@ def _worker():
             _run_head()
 
 
-def submit(fn, *args):
+def submit(fn, *args, now=False):
     """Queue ``fn(*args)`` for the raster thread (or run it now when
-    config.PIPELINE is off, or inside a queued item)."""
+    config.PIPELINE is off, or inside a queued item, or, with ``now``, when
+    that thread has nothing queued or running: work too small to be worth
+    handing over, which then runs in the same order, as a queued item: a
+    failure is raised by the next :func:`sync`)."""
     s = _state
     if getattr(_inside, "item", False):
         fn(*args)
@@ -139,6 +142,18 @@ def submit(fn, *args):
     if not config.PIPELINE or numba.get_num_threads() < 2:
         sync()                  # (after what was queued while it was on)
         fn(*args)
+        return
+    if now and s["sent"] == s["done"]:
+        # (only the program's thread queues work: with nothing queued the
+        # raster thread stays asleep, and is not woken to find nothing)
+        _inside.item = True
+        try:
+            fn(*args)
+        except BaseException as e:      # raised by the next sync()
+            if s["error"] is None:
+                s["error"] = e
+        finally:
+            _inside.item = False
         return
     if s["thread"] is None:
         t = threading.Thread(target=_worker, name="vgx-raster", daemon=True)

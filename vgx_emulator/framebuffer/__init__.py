@@ -67,7 +67,7 @@ class Framebuffer:
     accum = _Waited()
     layers = _Waited()
     zmax = _Waited()
-    zmax_fresh = _Waited()
+    zmax_dirty = _Waited()
     zmax_uniform = _Waited()
 
     def __init__(self, width, height):
@@ -77,7 +77,7 @@ class Framebuffer:
         self.back = None
         self.z = None
         self.zmax = None            # zmax.py: per-segment maxima of z
-        self.zmax_fresh = False     # zmax matches z (no z write since it was built)
+        self.zmax_dirty = None      # the rectangle of z written since zmax was built
         self.zmax_uniform = None    # the value of every maximum after a whole clear
         self.stencil = None
         self.stencil_planes = 0
@@ -135,29 +135,46 @@ class Framebuffer:
         return self.queued("z") if queued else self.z
 
     def z_maxima(self):
-        """The per-segment z maxima (zmax.py), rebuilt if z was written
-        since they were last built."""
+        """The per-segment z maxima (zmax.py), rebuilt where z was written
+        since they were last built (zmax_dirty)."""
         z = self.ensure_z()
         if self.zmax is None:
             self.zmax = zmax.empty(self.height, self.width)
-        if not self.zmax_fresh:
-            zmax.build(z, self.zmax)
-            self.zmax_fresh = True
+            self.zmax_dirty = (0, self.width - 1, 0, self.height - 1)
+        d = self.zmax_dirty
+        if d is not None:
+            zmax.build(z, self.zmax, d[0], d[1], d[2], d[3])
+            self.zmax_dirty = None
             self.zmax_uniform = None
         return self.zmax
 
-    def z_written(self, rect=None, value=None):
+    @property
+    def zmax_fresh(self):
+        """Whether the maxima match the z bank (no z written since built)."""
+        return self.zmax is not None and self.zmax_dirty is None
+
+    def z_written(self, rect=None, value=None, box=None):
         """A pass or clear writes the z bank: the maxima must be rebuilt
-        before their next use.  A clear of the whole bank to ``value``
-        (rect = x0, x1, y0, y1) sets them instead."""
+        before their next use, over ``box`` (x0, x1, y0, y1 inclusive: the
+        pixels the writes may have touched; None: anywhere) joined to what
+        was written since they were built.  A clear of the whole bank to
+        ``value`` (rect = x0, x1, y0, y1) sets them instead; a partial clear
+        marks its ``rect``; an empty ``box`` changes nothing."""
+        if box is not None and (box[0] > box[1] or box[2] > box[3]):
+            return
         whole = rect is not None and rect[0] == 0 and rect[2] == 0 and \
             rect[1] == self.width - 1 and rect[3] == self.height - 1
         self.zmax_uniform = value if whole else None
         if whole and self.zmax is not None:
             self.zmax[:] = value
-            self.zmax_fresh = True
-        else:
-            self.zmax_fresh = False
+            self.zmax_dirty = None
+            return
+        r = box if box is not None else rect if rect is not None else \
+            (0, self.width - 1, 0, self.height - 1)
+        d = self.zmax_dirty
+        if d is not None:
+            r = (min(d[0], r[0]), max(d[1], r[1]), min(d[2], r[2]), max(d[3], r[3]))
+        self.zmax_dirty = r
 
     def swap(self):
         """swapbuffers(): exchange front and back."""

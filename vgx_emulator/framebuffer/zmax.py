@@ -7,8 +7,11 @@ with stencil on the fail and z-fail ops both ST_KEEP: machine._z_maxima)
 skips a span whose smallest quantized z exceeds the maxima under it: every
 fragment of it would fail, so the banks end the same.  The maxima are
 rebuilt from the z bank when a pass wants them after any z write
-(Framebuffer.z_written); a pass of triangles that changed no stored z (the
-walker reports it in the parameter slot P_ZCHANGED: a ZF_EQUAL or
+(Framebuffer.z_written), over the rectangle the writes since the last
+build may have touched (the union of the passes' vertex boxes, clipped to
+their scissor: a small pass no longer rebuilds the whole window, 0.15 ms
+at 640x480); a pass of triangles that changed no stored z (the walker
+reports it in the parameter slot P_ZCHANGED: a ZF_EQUAL or
 ZF_LEQUAL redraw of what the bank holds, as multipass shadow algorithms
 do) does not count.  Writes by an eligible pass itself only lower z, so
 the maxima it uses stay upper bounds while it runs.
@@ -27,18 +30,22 @@ def empty(height, width):
 
 
 @njit
-def build(z, out):
-    """out[y, s] = max(z[y, s * SEGMENT : (s + 1) * SEGMENT]).  A full
-    segment is reduced as a tree of pairwise maxima (the compiler makes it
-    one 8-lane vector maximum and a horizontal reduction: 0.3 ms for a
-    1280 x 1024 bank, against 0.9 ms for a loop of 16); a last partial
-    segment element by element."""
+def build(z, out, x0, x1, y0, y1):
+    """out[y, s] = max(z[y, s * SEGMENT : (s + 1) * SEGMENT]) for the rows
+    y0..y1 and the segments that hold pixels x0..x1 (inclusive; the whole
+    bank: 0, width - 1, 0, height - 1).  A full segment is reduced as a
+    tree of pairwise maxima (the compiler makes it one 8-lane vector
+    maximum and a horizontal reduction: 0.3 ms for a 1280 x 1024 bank,
+    against 0.9 ms for a loop of 16); a last partial segment element by
+    element."""
     w = z.shape[1]
     full = w >> SEGMENT_SHIFT
-    for y in range(z.shape[0]):
+    s0 = x0 >> SEGMENT_SHIFT
+    s1 = min(x1 >> SEGMENT_SHIFT, full - 1)
+    for y in range(y0, y1 + 1):
         row = z[y]
         orow = out[y]
-        for s in range(full):
+        for s in range(s0, s1 + 1):
             x = np.uint64(s << SEGMENT_SHIFT)
             a0 = max(row[x], row[x + 8])
             a1 = max(row[x + 1], row[x + 9])
@@ -49,9 +56,9 @@ def build(z, out):
             a6 = max(row[x + 6], row[x + 14])
             a7 = max(row[x + 7], row[x + 15])
             orow[s] = max(max(max(a0, a4), max(a2, a6)), max(max(a1, a5), max(a3, a7)))
-        if full < out.shape[1]:
-            x0 = full << SEGMENT_SHIFT
-            m = row[x0]
-            for x in range(x0 + 1, w):
+        if full < out.shape[1] and x1 >= full << SEGMENT_SHIFT:
+            xs = full << SEGMENT_SHIFT
+            m = row[xs]
+            for x in range(xs + 1, w):
                 m = max(m, row[x])
             orow[full] = m

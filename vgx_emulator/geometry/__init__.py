@@ -42,6 +42,7 @@ class WindowWork:
     segflat: np.ndarray = None     # (S, 4)
     points: np.ndarray = None      # (P, 7)
     TC: np.ndarray = None          # (V, 3) s/w, t/w, 1/w when texturing
+    box: tuple = None              # pixels x0, x1, y0, y1 the triangles may cover (None: any)
     twoside: bool = False
     dropped: int = 0
     extra: dict = field(default_factory=dict)
@@ -347,7 +348,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
                 tc = verts[:, k:k + 2]
         # only vertices that a kept triangle uses are converted: an original
         # vertex replaced by clipping may lie at w <= 0 or far outside the band
-        work.X, work.Y, work.Z, ok, lost = viewport.window_fixed(
+        work.X, work.Y, work.Z, ok, lost, work.box = viewport.window_fixed(
             clp, work.tris, viewport_rect, near_far, snap)
         if lost.any():
             # a kept triangle with a vertex the divide cannot place: the clip

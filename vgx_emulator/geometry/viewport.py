@@ -86,19 +86,23 @@ def window_fixed(v, tris, viewport, depth_range, snap):
     range (edges between vertices of 1e20 and more).  x and y are rounded
     to nearest with SUBPIXEL_BITS fractional bits.  Returns (X, Y int64,
     Z float64 window z, ok (N,), lost (T,) a triangle with a vertex that is
-    not placed); unused and unplaced vertices get 0.  (The arrays are made
-    here: with an empty cache numba's np.zeros in a kernel costs its own
-    compile.)"""
+    not placed, box: the pixels x0, x1, y0, y1 whose centres the placed
+    vertices' extent may cover, x0 > x1 when none is placed); unused and
+    unplaced vertices get 0.  (The arrays are made here: with an empty
+    cache numba's np.zeros in a kernel costs its own compile.)"""
     n = len(v)
+    box = np.array([FIXED_LIMIT, -FIXED_LIMIT, FIXED_LIMIT, -FIXED_LIMIT], np.int64)
     out = (np.zeros(n, np.int64), np.zeros(n, np.int64), np.zeros(n), np.zeros(n, bool),
-           np.zeros(len(tris), bool), np.zeros(n, bool))
+           np.zeros(len(tris), bool), np.zeros(n, bool), box)
     _window_fixed(v, tris, _ints(viewport), _floats(depth_range), bool(snap), out)
-    return out[:5]
+    shift = config.SUBPIXEL_BITS
+    return out[:5] + ((int(box[0] >> shift), int(box[1] >> shift),
+                       int(box[2] >> shift), int(box[3] >> shift)),)
 
 
 @njit(error_model="numpy")
 def _window_fixed(v, tris, viewport, depth_range, snap, out):
-    X, Y, Z, ok, lost, used = out
+    X, Y, Z, ok, lost, used, box = out
     limit = FIXED_LIMIT / ONE
     for i in range(tris.shape[0]):
         used[tris[i, 0]] = True
@@ -113,6 +117,10 @@ def _window_fixed(v, tris, viewport, depth_range, snap, out):
             X[i] = np.int64(math.floor(xw * ONE + 0.5))
             Y[i] = np.int64(math.floor(yw * ONE + 0.5))
             Z[i] = zw
+            box[0] = min(box[0], X[i])
+            box[1] = max(box[1], X[i])
+            box[2] = min(box[2], Y[i])
+            box[3] = max(box[3], Y[i])
     for i in range(tris.shape[0]):
         lost[i] = not (ok[tris[i, 0]] and ok[tris[i, 1]] and ok[tris[i, 2]])
 
