@@ -314,3 +314,21 @@ def test_a_small_pass_is_drawn_at_once_when_the_raster_thread_is_idle(open_windo
     assert pipeline.pending()              # the square waits behind the clear
     front = machine.current.fb.front
     assert front[8, 8] == 0xFF00FF00 and front[20, 20] == 0xFF0000FF
+
+
+def test_num_threads_is_numbas_count_of_the_calling_thread():
+    """pipeline.num_threads reads what numba.get_num_threads gives, after
+    set_num_threads on this thread and on another."""
+    n = numba.get_num_threads()
+    assert pipeline.num_threads() == n
+    seen = []
+    try:
+        numba.set_num_threads(1)
+        assert pipeline.num_threads() == 1 == numba.get_num_threads()
+        t = threading.Thread(target=lambda: seen.append(pipeline.num_threads()))
+        t.start()
+        t.join()
+    finally:
+        numba.set_num_threads(n)
+    assert pipeline.num_threads() == n
+    assert seen == [numba.get_num_threads()]

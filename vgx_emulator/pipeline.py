@@ -30,6 +30,7 @@ from collections import deque
 from concurrent.futures import ThreadPoolExecutor
 
 import numba
+from numba.np.ufunc import parallel as _numba_parallel
 
 from . import config
 
@@ -129,6 +130,18 @@ def _worker():
             _run_head()
 
 
+def num_threads():
+    """numba.get_num_threads(): the calling thread's count (set_num_threads
+    is per thread).  Once numba's threads are launched it is read directly,
+    without get_num_threads' check of the launch under two locks (1.3 us,
+    called a few times a flush); any other numba falls back to the call."""
+    if getattr(_numba_parallel, "_is_initialized", False):
+        n = _numba_parallel._get_num_threads()
+        if n > 0:
+            return n
+    return numba.get_num_threads()
+
+
 def submit(fn, *args, now=False):
     """Queue ``fn(*args)`` for the raster thread (or run it now when
     config.PIPELINE is off, or inside a queued item, or, with ``now``, when
@@ -139,7 +152,7 @@ def submit(fn, *args, now=False):
     if getattr(_inside, "item", False):
         fn(*args)
         return
-    if not config.PIPELINE or numba.get_num_threads() < 2:
+    if not config.PIPELINE or num_threads() < 2:
         sync()                  # (after what was queued while it was on)
         fn(*args)
         return
@@ -177,8 +190,8 @@ def split(count, least):
     thread, and m = 1 (run it at once) when there are fewer than two shares
     or the raster thread is busy (it holds the other core)."""
     if count < 2 * least or not config.PARALLEL or not idle():
-        return 1, 1                     # (before numba.get_num_threads: 3 us a call)
-    n = numba.get_num_threads()
+        return 1, 1                     # (before num_threads)
+    n = num_threads()
     return n, (min(n * config.SHARES_PER_THREAD, count // least) if n > 1 else 1)
 
 

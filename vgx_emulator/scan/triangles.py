@@ -401,7 +401,7 @@ def run_bands(walk, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
     n = 1
     if config.PARALLEL:
         n = min((2 if pipeline.helper_waiting() else 1) if raster_thread else
-                numba.get_num_threads(), len(bands))
+                pipeline.num_threads(), len(bands))
     if n > 1:
         # a batch whose triangle boxes cover fewer than PARALLEL_MIN_PIXELS
         # pixels runs on this thread alone: waking the others costs more
