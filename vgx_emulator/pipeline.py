@@ -107,18 +107,26 @@ def _run_head():
     fn, args = _items.popleft()
     s["running"] = True
     _lock.release()
-    _inside.item = True
     try:
-        fn(*args)
-    except BaseException as e:      # raised by the next sync()
-        if s["error"] is None:
-            s["error"] = e
+        _as_item(fn, args)
     finally:
-        _inside.item = False
         _lock.acquire()
         s["running"] = False
         s["done"] += 1
         _lock.notify_all()
+
+
+def _as_item(fn, args):
+    """fn(*args) as a queued item on this thread: the banks it reads do
+    not wait, and a failure is kept for the next sync() to raise."""
+    _inside.item = True
+    try:
+        fn(*args)
+    except BaseException as e:      # raised by the next sync()
+        if _state["error"] is None:
+            _state["error"] = e
+    finally:
+        _inside.item = False
 
 
 def _worker():
@@ -159,14 +167,7 @@ def submit(fn, *args, now=False):
     if now and s["sent"] == s["done"]:
         # (only the program's thread queues work: with nothing queued the
         # raster thread stays asleep, and is not woken to find nothing)
-        _inside.item = True
-        try:
-            fn(*args)
-        except BaseException as e:      # raised by the next sync()
-            if s["error"] is None:
-                s["error"] = e
-        finally:
-            _inside.item = False
+        _as_item(fn, args)
         return
     if s["thread"] is None:
         t = threading.Thread(target=_worker, name="vgx-raster", daemon=True)
