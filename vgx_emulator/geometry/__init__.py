@@ -138,14 +138,16 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
     col = attrs[:, 3:7].copy()
     if not lighting_active(st, defs):
         return col, None
-    flags = attrs[:, 7].astype(np.int64)
     modes = np.array([m[3] for m in mats] or [st.lmcolor], np.int64)
-    vmode = modes[attrs[:, 13].astype(np.int64)] if len(modes) > 1 else \
-        np.broadcast_to(modes[0], len(col))
-    lit = (vmode != lighting.LMC_COLOR) | ((flags & LAST_WAS_NORMAL) != 0)
-    if not lit.any():
-        return col, None
-    idx = np.nonzero(lit)[0]
+    if len(modes) == 1 and modes[0] != lighting.LMC_COLOR:
+        idx = np.arange(len(col))           # (one mode that lights every vertex)
+    else:
+        after_normal = (attrs[:, 7].astype(np.int64) & LAST_WAS_NORMAL) != 0
+        lit = after_normal if len(modes) == 1 else \
+            (modes[attrs[:, 13].astype(np.int64)] != lighting.LMC_COLOR) | after_normal
+        idx = np.nonzero(lit)[0]
+        if not len(idx):
+            return col, None
     nm = [lighting.normal_matrix(t.modelview) for t in xforms]
     front, back_mats = _materials(st, defs, mats)
     model = defs[lighting.DEFLMODEL][st.lmodel]
@@ -291,18 +293,16 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     unlit.  ``assembled``: the machine's AssemblyCache (None: assemble
     anew)."""
     pos, attrs = batch.arrays()
-    with np.errstate(all="ignore"):     # non-finite input is dropped with a VGXWarning below
-        eye4, clp, xf = _transform(pos, attrs, batch.xforms)
+    # (one errstate for the per-vertex stages: non-finite input, normals
+    # or matrices are dropped with a VGXWarning below; 2 us a context)
     with np.errstate(all="ignore"):
+        eye4, clp, xf = _transform(pos, attrs, batch.xforms)
         tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
-    with np.errstate(all="ignore"):     # a non-finite normal or matrix: dropped below
         col, back = _light(st, defs, eye4, attrs, xf, batch.xforms, batch.mats) if shade else \
             (attrs[:, 3:7].copy(), None)
-    if shade and st.rgb and st.fog.on:
-        with np.errstate(all="ignore"):     # fogvertex(3G): per vertex, after lighting
-            col, back = fog.apply(st.fog, eye4, col, back)
-    # clipplane(3G): distances to the enabled user planes (eye space)
-    with np.errstate(all="ignore"):
+        if shade and st.rgb and st.fog.on:
+            col, back = fog.apply(st.fog, eye4, col, back)  # fogvertex(3G): after lighting
+        # clipplane(3G): distances to the enabled user planes (eye space)
         ud = clip.user_distances(eye4, st.user_planes)
     nuser = 0 if ud is None else ud.shape[1]
     bad = np.zeros(len(pos), bool)
