@@ -110,7 +110,7 @@ MAX_POLYGON_VERTICES = 256
 #: pixels is drawn at once on the program's thread when the raster thread
 #: is idle (pipeline.submit ``now``): waking that thread and trading the
 #: GIL with it cost more than such a pass (a one-triangle lit pass at
-#: 640x480: 430 -> 280 us a flush)
+#: 640x480: 424-443 -> 300-320 us a flush, docs/performance.md)
 INLINE_TRIANGLES = 256
 INLINE_PIXELS = 1 << 14
 

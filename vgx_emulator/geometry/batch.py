@@ -77,7 +77,7 @@ def colour_component(kind, k, a, v):
 def colour_value(kind, a, b, c, d):
     """The 0..255 RGBA floats of one colour event (colour_component)."""
     one = colour_component.py_func
-    return tuple(one(kind, k, a, v) for k, v in enumerate((float(a), float(b), float(c), float(d))))
+    return tuple(one(kind, k, a, v) for k, v in enumerate((a, b, c, d)))
 
 
 class Transform:
