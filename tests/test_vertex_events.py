@@ -11,7 +11,8 @@ import pytest
 from vgx_emulator.geometry.batch import (COLOUR_SINCE_BIND, EV_BYTE, EV_COLOUR, EV_CPACK,
                                          EV_NORMAL, EV_REC, EV_TEX, EV_UNIT, LAST_WAS_NORMAL,
                                          R_COLOUR, R_FLAGS, R_MATERIAL, R_NORMAL, R_STRQ,
-                                         RECORD, colour_value, per_vertex)
+                                         RECORD, _doubles, _events, colour_value,
+                                         per_vertex)
 
 
 def _replayed(ev, recs, n, mats):
@@ -71,9 +72,13 @@ def test_per_vertex_matches_the_stream_replayed(seed, nrecs, kinds):
     rng = np.random.default_rng(seed)
     n = 40
     ev, recs = _stream(rng, n, nrecs, kinds)
-    got = per_vertex(ev, recs, n, MATS)
+    got, last = per_vertex(ev, recs, n, MATS)
     want = _replayed(ev, recs, n, MATS)
     assert np.array_equal(got, want)
+    # the newest event of each group (VertexBatch.sync), -1 where none came
+    groups = ([EV_NORMAL], [EV_TEX], [EV_COLOUR, EV_UNIT, EV_BYTE, EV_CPACK])
+    want_last = [max([j for j in range(len(ev)) if ev[j, 1] in g], default=-1) for g in groups]
+    assert last.tolist() == want_last
 
 
 NAN, INF = float("nan"), float("inf")
@@ -98,5 +103,39 @@ def test_colour_events_convert_as_the_man_pages_say(kind, values, want):
     colour calls' man pages define them."""
     assert np.array_equal(colour_value(kind, *values), want, equal_nan=True)
     ev = np.array([(0, EV_REC, 0, 0, 0, 0), (0, kind, *values)], np.float64)
-    got = per_vertex(ev, np.zeros((1, RECORD)), 1, MATS)[0, R_COLOUR]
+    got = per_vertex(ev, np.zeros((1, RECORD)), 1, MATS)[0][0, R_COLOUR]
     assert np.array_equal(got, want, equal_nan=True)
+
+
+@pytest.mark.parametrize("m", [0, 1, 255, 256, 257, 700])
+def test_events_convert_every_value_as_fromiter_does(m):
+    """_events (struct, chunks of 256 events) gives the (m, 6) array that
+    np.fromiter gives, at the chunk edges too, for the values the calls
+    append: int at and kind, floats, a cpack word, NaN and infinities; a
+    chunk with a float at or kind (events made from an array) included."""
+    rng = np.random.default_rng(m)
+    ev = []
+    for j in range(m):
+        kind = int(rng.integers(0, 7))
+        vals = [float(v) for v in rng.uniform(-1e3, 1e3, 4)]
+        if j % 97 == 5:
+            vals[1:3] = [NAN, -INF]
+        if kind == EV_CPACK:
+            vals = [int(rng.integers(0, 1 << 32)), 0, 0, 0]
+        at = 4 * j if j % 300 != 299 else float(4 * j)      # a float at, now and then
+        ev += [at, kind, *vals]
+    want = np.fromiter(ev, np.float64, len(ev)).reshape(-1, 6)
+    got = _events(ev)
+    assert got.shape == (m, 6)
+    assert np.array_equal(got, want, equal_nan=True)
+
+
+def test_doubles_converts_as_fromiter_and_raises_as_it_does():
+    vals = [1.5, 2, -0.0, NAN, INF, np.float64(3.25), True]
+    assert np.array_equal(_doubles(vals), np.fromiter(vals, np.float64), equal_nan=True)
+    assert _doubles(vals).flags.writeable
+    assert _doubles([]).shape == (0,)
+    with pytest.raises(OverflowError):
+        _doubles([1.0, 10 ** 400])
+    with pytest.raises((TypeError, ValueError)):
+        _doubles([1.0, "x"])

@@ -14,7 +14,7 @@ Immediate mode leaves two flat Python lists, appended to by one C call each:
   attributes are read through `sync`, which takes the newest events.
 
 No Python runs per vertex at the flush: `arrays` converts the lists with
-one C call each and replays the events over the vertices in one compiled
+struct (`_doubles`, `_events`) and replays the events over the vertices in one compiled
 pass (`per_vertex`).  Display-list
 replay, NURBS and curveit append whole blocks of positions and records
 (`add_vertices`); the immediate lists then continue after them.  Vertex
@@ -22,6 +22,8 @@ numbers in primitives and swaps are global over blocks + lists.  A batch
 holds one class of primitive (filled, line or point) so that drawing order
 between classes is kept by flushing on a change.
 """
+import struct
+
 import numpy as np
 
 from ..jit import helper, njit
@@ -107,24 +109,28 @@ def per_vertex(ev, recs, n, mats):
     normal and colour (lmcolor(3G)), COLOUR_SINCE_BIND is set by a colour
     sent while a material is bound.  One compiled pass over the vertices
     and the events in stream order (an event applies from the vertex whose
-    x was ``pos[at]`` on)."""
+    x was ``pos[at]`` on).  Also returns the row of the newest normal,
+    texture and colour event in ``ev`` ((3,) int64, -1 for none: what
+    VertexBatch.sync gives the window state)."""
     out = np.zeros((n, RECORD))         # (events before vertex 0's record read zeros)
+    last = np.full(3, -1, np.int64)
     if n:
         first = np.flatnonzero(ev[:, 1] == EV_REC)[:1]
         if not len(first) or ev[first[0], 0] > 0:
             raise AssertionError("a vertex before any attribute record")
-        bound = np.array([m[0] != 0 for m in mats] or [False], np.bool_)
-        _replay(np.ascontiguousarray(ev), np.ascontiguousarray(recs), bound, out)
-    return out
+    bound = np.array([m[0] != 0 for m in mats] or [False], np.bool_)
+    _replay(np.ascontiguousarray(ev), np.ascontiguousarray(recs), bound, out, last)
+    return out, last
 
 
 @njit
-def _replay(ev, recs, bound, out):
+def _replay(ev, recs, bound, out, last):
     """per_vertex's pass: the current attributes, updated event by event,
-    copied to each vertex (the colour kinds converted by colour_component).
-    Written with scalar loops only: whole-row assignments, np.zeros and
-    np.isfinite made numba compile its array helpers too (3.5 s of a cold
-    start against 0.6 s; benchmarks/compile_cost.py)."""
+    copied to each vertex (the colour kinds converted by colour_component);
+    then the newest event of each group, from the end.  Written with scalar
+    loops only: whole-row assignments, np.zeros and np.isfinite made numba
+    compile its array helpers too (3.5 s of a cold start against 0.6 s;
+    benchmarks/compile_cost.py)."""
     nc = out.shape[1]
     j = 0
     m = ev.shape[0]
@@ -153,11 +159,19 @@ def _replay(ev, recs, bound, out):
                 since = COLOUR_SINCE_BIND if bound[int(row[R_MATERIAL])] else 0
                 row[R_FLAGS] = (int(row[R_FLAGS]) & COLOUR_SINCE_BIND) | since
             j += 1
+    found = 0
+    j = m - 1
+    while j >= 0 and found < 3:
+        kind = int(ev[j, 1])
+        g = 0 if kind == EV_NORMAL else 1 if kind == EV_TEX else 2 if kind >= EV_COLOUR else -1
+        if g >= 0 and last[g] < 0:
+            last[g] = j
+            found += 1
+        j -= 1
 
 
 #: sync: from this many new events the kinds are searched as one array
-#: (a list.index over a kind never sent scans every event, once per kind);
-#: at a flush that array is the one the flush made (``ev_array``)
+#: (a list.index over a kind never sent scans every event, once per kind)
 _SEARCH_ARRAY = 64
 
 
@@ -177,17 +191,84 @@ def _newest(back, kinds):
     return int(np.argmax(found)) if found.any() else len(back)
 
 
+#: _events packs this many events at a time: at and kind as int64, the four
+#: values as doubles (struct takes a list of Python numbers to doubles in
+#: about half of np.fromiter's time, where both fields are ints)
+_EV_CHUNK = 256
+_EV_PACK = struct.Struct("<" + "qq4d" * _EV_CHUNK)
+_EV_PACK_ANY = struct.Struct("<" + "6d" * _EV_CHUNK)
+_EV_RECORD = np.dtype([("at", "<i8"), ("kind", "<i8"), ("v", "<f8", (4,))])
+_EV_PAD = [0] * (EVW * _EV_CHUNK)
+
+
+def _doubles(values):
+    """A list of Python numbers as a new float64 array (one struct pack;
+    np.fromiter where struct refuses a value, which then raises as before)."""
+    n = len(values)
+    buf = bytearray(8 * n)
+    try:
+        struct.pack_into(f"<{n}d", buf, 0, *values)
+    except (struct.error, OverflowError, TypeError):
+        return np.fromiter(values, np.float64, n)
+    return np.frombuffer(buf, np.float64)
+
+
+def _int64s(values):
+    """A list of Python ints (the primitive table) as a new int64 array
+    (one struct pack; np.array where struct refuses a value)."""
+    n = len(values)
+    buf = bytearray(8 * n)
+    try:
+        struct.pack_into(f"<{n}q", buf, 0, *values)
+    except (struct.error, OverflowError, TypeError):
+        return np.array(values, np.int64)
+    return np.frombuffer(buf, np.int64)
+
+
+def _events(ev):
+    """The flat event list as an (m, EVW) float64 array, packed in chunks of
+    _EV_CHUNK events; a chunk whose at or kind is not an int (events made
+    from an array: machine.py) is packed as doubles throughout."""
+    m = len(ev) // EVW
+    step, size = EVW * _EV_CHUNK, _EV_PACK.size
+    full = m // _EV_CHUNK
+    buf = bytearray(size * (full + 1))
+    doubles = []                        # chunks packed by _EV_PACK_ANY
+    try:
+        for c in range(full + 1):
+            part = ev[c * step:(c + 1) * step]
+            if len(part) < step:
+                part += _EV_PAD[:step - len(part)]
+            try:
+                _EV_PACK.pack_into(buf, c * size, *part)
+            except struct.error:
+                _EV_PACK_ANY.pack_into(buf, c * size, *part)
+                doubles.append(c)
+    except (struct.error, OverflowError, TypeError):
+        return np.fromiter(ev, np.float64, len(ev)).reshape(-1, EVW)
+    rec = np.frombuffer(buf, _EV_RECORD, m)
+    out = np.empty((m, EVW))
+    out[:, 0] = rec["at"]
+    out[:, 1] = rec["kind"]
+    out[:, 2:] = rec["v"]
+    for c in doubles:
+        lo, hi = c * _EV_CHUNK, min((c + 1) * _EV_CHUNK, m)
+        out[lo:hi] = np.frombuffer(buf, np.float64, EVW * (hi - lo), c * size).reshape(-1, EVW)
+    return out
+
+
 class VertexBatch:
     """One window's vertex stream (see the module docstring)."""
 
-    __slots__ = ("pos", "ev", "ev_array", "synced", "attrs", "owner", "open", "vblocks", "vbase",
+    __slots__ = ("pos", "ev", "ev_array", "ev_last", "synced", "attrs", "owner", "open", "vblocks", "vbase",
                  "xforms", "mats", "prims", "blocks", "swaps", "calls", "klass", "start",
                  "dirty", "xf_dirty")
 
     def __init__(self):
         self.pos = []               # flat x, y, z, w after the last vertex block
         self.ev = []                # flat attribute events (EVW numbers) for ``pos``
-        self.ev_array = None        # ev as the last flush converted it (sync reads its kinds)
+        self.ev_array = None        # ev as the last flush converted it
+        self.ev_last = None         # with it, the newest normal, texture, colour event (sync)
         self.synced = 0             # len(ev) when the window state last took them (sync)
         self.attrs = []             # flat records the EV_REC events name
         self.owner = None           # the WindowState whose current attributes ev updates
@@ -268,7 +349,7 @@ class VertexBatch:
         (display-list replay, NURBS, curveit: ``call`` names it in warnings),
         after the immediate ones already recorded."""
         if self.prims:
-            self.blocks.append(np.array(self.prims, np.int64).reshape(-1, 4))
+            self.blocks.append(_int64s(self.prims).reshape(-1, 4))
             self.prims = []
         self.blocks.append(table)
         self.calls.add(call)
@@ -295,30 +376,35 @@ class VertexBatch:
     def _tail(self):
         """(positions (n, 4), records (n, RECORD)) of the immediate lists."""
         n = len(self.pos) >> 2
-        # fromiter: half the time of np.array on a list of Python numbers
-        pos = np.fromiter(self.pos, np.float64, len(self.pos)).reshape(n, 4)
-        ev = self.ev_array = np.fromiter(self.ev, np.float64, len(self.ev)).reshape(-1, EVW)
+        pos = _doubles(self.pos).reshape(n, 4)
+        ev = self.ev_array = _events(self.ev)
         recs = np.array(self.attrs, np.float64).reshape(-1, RECORD)
-        return pos, per_vertex(ev, recs, n, self.mats)
+        out, self.ev_last = per_vertex(ev, recs, n, self.mats)
+        return pos, out
 
     def sync(self, st):
         """Give ``st`` the newest normal, colour, texture coordinate and
-        their flags among the events since the last sync (a C-speed search
-        of the kinds, then a few Python steps)."""
+        their flags among the events since the last sync: right after a
+        flush converted the events, the newest of each group its replay
+        found (``ev_last``); otherwise a C-speed search of the kinds.  Then
+        a few Python steps."""
         ev, first = self.ev, self.synced
         self.synced = len(ev)             # before the writes below: they sync too
-        if len(ev) - first < EVW * _SEARCH_ARRAY:
-            back = ev[len(ev) - EVW + 1:first:-EVW]       # the kinds, newest first
-        elif self.ev_array is not None and EVW * len(self.ev_array) == len(ev):
-            back = self.ev_array[:first // EVW - 1:-1, 1] if first else self.ev_array[::-1, 1]
+        last = {}                         # group -> index among the new events
+        if self.ev_array is not None and EVW * len(self.ev_array) == len(ev):
+            for group, j in zip((EV_NORMAL, EV_TEX, EV_COLOUR), self.ev_last.tolist()):
+                if EVW * j >= first:
+                    last[group] = j - first // EVW
         else:
-            back = np.fromiter(ev[len(ev) - EVW + 1:first:-EVW], np.float64)
-        last = {}
-        for group, kinds in ((EV_NORMAL, (EV_NORMAL,)), (EV_TEX, (EV_TEX,)),
-                             (EV_COLOUR, COLOUR_KINDS)):
-            hit = _newest(back, kinds)
-            if hit < len(back):
-                last[group] = len(back) - 1 - hit    # index among the new events
+            if len(ev) - first < EVW * _SEARCH_ARRAY:
+                back = ev[len(ev) - EVW + 1:first:-EVW]       # the kinds, newest first
+            else:
+                back = np.fromiter(ev[len(ev) - EVW + 1:first:-EVW], np.float64)
+            for group, kinds in ((EV_NORMAL, (EV_NORMAL,)), (EV_TEX, (EV_TEX,)),
+                                 (EV_COLOUR, COLOUR_KINDS)):
+                hit = _newest(back, kinds)
+                if hit < len(back):
+                    last[group] = len(back) - 1 - hit
         d = st.__dict__
         if EV_NORMAL in last:
             j = first + EVW * last[EV_NORMAL]
@@ -389,7 +475,7 @@ class VertexBatch:
         """Every primitive of the batch in submission order, (P, 4) int64."""
         parts = list(self.blocks)
         if self.prims:
-            parts.append(np.array(self.prims, np.int64).reshape(-1, 4))
+            parts.append(_int64s(self.prims).reshape(-1, 4))
         if not parts:
             return np.zeros((0, 4), np.int64)
         return parts[0] if len(parts) == 1 else np.concatenate(parts)
