@@ -10,7 +10,7 @@ same object in changing states and compare with immediate mode.
 import numpy as np
 
 from irisgl import (bgnpolygon, callobj, clear, closeobj, cpack, endpolygon, genobj,
-                    lrectread, makeobj, ortho2, translate, v2f)
+                    lrectread, makeobj, n3f, ortho2, translate, v2f)
 
 W, H = 24, 8
 
@@ -102,3 +102,113 @@ def test_assembled_triangles_are_kept_by_the_machine_and_dropped_by_reset(open_w
         next(iter(vgx.assembled.entries.values())) is cached
     vgx.reset()
     assert len(vgx.assembled.entries) == 0
+
+
+def _frame(objs, colours):
+    """Each colour in turn: every object drawn in it, then a flush (one
+    pass per colour, as a multipass frame draws its scene in each pass)."""
+    cpack(0)
+    clear()
+    for c in colours:
+        cpack(c)
+        for o in objs:
+            callobj(o)
+        lrectread(0, 0, 0, 0)
+    return lrectread(0, 0, W - 1, H - 1).astype(np.int64)
+
+
+def _two_objects():
+    ortho2(-0.5, W - 0.5, -0.5, H - 0.5)
+    objs = []
+    for x0 in (0, 8):
+        o = genobj()
+        makeobj(o)
+        _square(x0)
+        closeobj()
+        objs.append(o)
+    return objs
+
+
+def test_a_scene_redrawn_in_each_pass_keeps_its_vertex_arrays(open_window, vgx):
+    """A frame of two passes (the same two objects in two colours), drawn
+    twice: the second frame finds each pass's records (GeometryRun.memo,
+    one per state) and concatenated vertex arrays (AssemblyCache.vertices)
+    again, and draws what the first drew; the immediate-mode twin draws the
+    same pixels and keeps no vertex arrays."""
+    open_window(W, H)
+    objs = _two_objects()
+    colours = (0xFF0000FF, 0xFF00FF00)
+    first = _frame(objs, colours)
+    kept = {k: v[1] for k, v in vgx.assembled.vertex_entries.items()}
+    assert len(kept) == 2                           # one batch per pass
+    runs = [op[1] for o in objs for op in vgx.objects[o].ops if op[0] == "run"]
+    assert runs and all(len(r.memo) == 2 for r in runs)
+    recs = [list(r.memo.values()) for r in runs]
+    again = _frame(objs, colours)
+    np.testing.assert_array_equal(again, first)
+    assert {k: v[1] for k, v in vgx.assembled.vertex_entries.items()} == kept
+    assert all(a is b for k in kept for a, b in zip(vgx.assembled.vertex_entries[k][1],
+                                                     kept[k]))
+    assert [list(r.memo.values()) for r in runs] == recs
+    # the same frame sent call by call
+    vgx.reset()
+    open_window(W, H)
+    ortho2(-0.5, W - 0.5, -0.5, H - 0.5)
+    cpack(0)
+    clear()
+    for c in colours:
+        cpack(c)
+        _square(0)
+        _square(8)
+        lrectread(0, 0, 0, 0)
+    np.testing.assert_array_equal(lrectread(0, 0, W - 1, H - 1).astype(np.int64), first)
+    assert not vgx.assembled.vertex_entries
+
+
+def test_a_kept_batch_still_drops_its_non_finite_vertex(open_window, vgx):
+    """The non-finite marks are kept with the arrays: every replay of an
+    object with a NaN normal (unlit: only the input check sees it) drops
+    that polygon with a warning and draws the others (docs/semantics.md:
+    a primitive touching a non-finite normal is dropped)."""
+    import pytest
+
+    from vgx_emulator import VGXWarning
+    open_window(W, H)
+    ortho2(-0.5, W - 0.5, -0.5, H - 0.5)
+    o = genobj()
+    makeobj(o)
+    _square(0)
+    bgnpolygon()
+    n3f((float("nan"), 0.0, 1.0))
+    for v in ((8, 2), (12, 2), (12, 6), (8, 6)):
+        v2f(v)
+    endpolygon()
+    n3f((0.0, 0.0, 1.0))
+    _square(16)
+    closeobj()
+    for _ in range(3):
+        cpack(0)
+        clear()
+        cpack(0xFFFFFFFF)
+        callobj(o)
+        with pytest.warns(VGXWarning, match="2 triangle"):
+            row = lrectread(0, 0, W - 1, H - 1).astype(np.int64)[4]
+        assert row[2] == row[18] == 0xFFFFFFFF and not row[8:13].any()
+    assert len(vgx.assembled.vertex_entries) == 1
+
+
+def test_kept_vertex_arrays_stay_within_their_budget(open_window, vgx, monkeypatch):
+    """AssemblyCache.vertices drops the oldest batches beyond VERTEX_BYTES,
+    and counts exactly the bytes it holds."""
+    from vgx_emulator.geometry import AssemblyCache
+    open_window(W, H)
+    objs = _two_objects()
+    colours = [0xFF000000 | c for c in range(1, 7)]
+    _frame(objs, colours[:1])
+    one = vgx.assembled.vertex_bytes
+    monkeypatch.setattr(AssemblyCache, "VERTEX_BYTES", 3 * one)
+    _frame(objs, colours)                       # six batches of the same size
+    entries = vgx.assembled.vertex_entries
+    assert len(entries) == 3
+    assert vgx.assembled.vertex_bytes == sum(a.nbytes for _, out in entries.values()
+                                             for a in out) == 3 * one

@@ -21,6 +21,8 @@ run's last colour and normal, as after executing the calls.
 A run that cannot be compiled (unbalanced bgn/end, a bad argument) is kept
 as plain calls, which raise their GLError when replayed.
 """
+from collections import OrderedDict
+
 import numpy as np
 
 from .geometry.assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
@@ -38,6 +40,13 @@ MAX_DEPTH = 64      # nesting of callobj during replay
 
 class NotCompilable(Exception):
     pass
+
+
+#: replay_run keeps the records of this many states per run: an object drawn
+#: in every pass of a multipass frame, under another state in each, finds
+#: its records again in the next frame (and the batch arrays made of them
+#: stay the same arrays: geometry.AssemblyCache.vertices)
+MEMO_STATES = 8
 
 
 class GeometryRun:
@@ -72,7 +81,7 @@ class GeometryRun:
         self.last = np.array([-1 if st[2] is None else int(st[2] == "n") for st in states],
                              np.int64)
         self.coloured = np.array([st[3] for st in states], bool)
-        self.memo = (None, None)    # replay_run: (state key, records) of the last replay
+        self.memo = OrderedDict()   # replay_run: state key -> records, the last MEMO_STATES
 
 
 def _colour_of(name, args):
@@ -235,8 +244,10 @@ def replay_run(machine, win, run):
     mat = b.material_ref(st)
     key = (st.normal, st.colour, st.texcoord, st.last_was_normal, st.colour_since_bind,
            st.material != 0, xform, mat)
-    rec = run.memo[1] if run.memo[0] == key else None
-    if rec is None:
+    rec = run.memo.get(key)
+    if rec is not None:
+        run.memo.move_to_end(key)
+    else:
         rec = run.tmpl.copy()
         rec[run.no_normal, 0:3] = st.normal
         rec[run.no_colour, 3:7] = st.colour
@@ -247,9 +258,11 @@ def replay_run(machine, win, run):
         rec[:, 8] = xform
         rec[:, 13] = mat
         rec = rec[run.akey]               # per vertex
-        run.memo = (key, rec)
+        run.memo[key] = rec
+        if len(run.memo) > MEMO_STATES:
+            run.memo.popitem(last=False)
     v0 = b.nverts
-    b.add_vertices(run.pos, rec)
+    b.add_vertices(run.pos, rec, kept=True)
     if len(run.swaps):
         b.swaps += (run.swaps + v0).tolist()
     table = run.table.copy()

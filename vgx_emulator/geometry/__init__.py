@@ -204,12 +204,48 @@ def texture_coordinates(st, pos, eye4, attrs, xf, xforms):
 
 class AssemblyCache:
     """Assembled triangles of the last ``size`` primitive tables (see
-    :meth:`triangles`).  It holds program state (what the program drew), so
-    the machine owns one and a reset() drops it with the rest."""
+    :meth:`triangles`), and the vertex arrays of the last batches made of
+    replayed blocks (:meth:`vertices`).  It holds program state (what the
+    program drew), so the machine owns one and a reset() drops it with the
+    rest."""
+
+    #: vertices keeps batches of at most this many bytes of arrays in all
+    VERTEX_BYTES = 64 << 20
 
     def __init__(self, size=64):
         self.size = size
         self.entries = OrderedDict()
+        self.vertex_entries = OrderedDict()
+        self.vertex_bytes = 0
+
+    def vertices(self, batch):
+        """(pos (N, 4), attrs (N, RECORD), bad (N,) bool: a non-finite
+        position or attribute) of the batch.  A batch of replayed blocks
+        only (display lists: the same run arrays, and the same records in
+        the same state, frame after frame) is looked up by the identity of
+        its blocks, so that a scene redrawn every pass is concatenated and
+        checked once; the arrays are read, never written, downstream.
+        Immediate-mode vertices, and blocks made anew at each call
+        (NURBS, array calls), are converted anew."""
+        blocks = batch.vblocks
+        if batch.pos or not blocks or not batch.kept:
+            return input_vertices(batch)
+        arrays = [a for block in blocks for a in block]
+        key = tuple(map(id, arrays))
+        hit = self.vertex_entries.get(key)
+        if hit is not None:
+            # (the entry holds its arrays: their ids are theirs while it lives)
+            self.vertex_entries.move_to_end(key)
+            return hit[1]
+        out = input_vertices(batch)
+        size = sum(a.nbytes for a in out)
+        if size <= self.VERTEX_BYTES:
+            self.vertex_entries[key] = (arrays, out)
+            self.vertex_bytes += size
+            while self.vertex_bytes > self.VERTEX_BYTES:
+                _, (_, old) = self.vertex_entries.popitem(last=False)
+                self.vertex_bytes -= sum(a.nbytes for a in old)
+        return out
 
     def triangles(self, batch, pos, table):
         """Triangles of every filled primitive, in submission order.
@@ -228,6 +264,16 @@ class AssemblyCache:
         else:
             self.entries.move_to_end(key)
         return hit
+
+
+def input_vertices(batch):
+    """(pos, attrs, bad) of a batch: its vertex arrays and which vertices
+    have a non-finite position or attribute (AssemblyCache.vertices)."""
+    pos, attrs = batch.arrays()
+    bad = np.zeros(len(pos), bool)
+    clip.mark_nonfinite(pos, 4, bad)
+    clip.mark_nonfinite(attrs, 7, bad)
+    return pos, attrs, bad
 
 
 def assemble_triangles(batch, pos, table):
@@ -292,7 +338,9 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     ``shade`` False (the pass uses no colour): vertex colours pass through
     unlit.  ``assembled``: the machine's AssemblyCache (None: assemble
     anew)."""
-    pos, attrs = batch.arrays()
+    pos, attrs, bad = (assembled.vertices(batch) if assembled is not None
+                       else input_vertices(batch))
+    bad = bad.copy()                    # (the input's marks may be kept: AssemblyCache)
     # (one errstate for the per-vertex stages: non-finite input, normals
     # or matrices are dropped with a VGXWarning below; 2 us a context)
     with np.errstate(all="ignore"):
@@ -305,9 +353,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         # clipplane(3G): distances to the enabled user planes (eye space)
         ud = clip.user_distances(eye4, st.user_planes)
     nuser = 0 if ud is None else ud.shape[1]
-    bad = np.zeros(len(pos), bool)
-    for a, k in ((pos, 4), (attrs, 7), (clp, 4), (col, 4)) + \
-            (((tc, 2),) if tc is not None else ()):
+    for a, k in ((clp, 4), (col, 4)) + (((tc, 2),) if tc is not None else ()):
         clip.mark_nonfinite(a, k, bad)
     gx, gy = viewport.guard_factors(viewport_rect)
     work = WindowWork(klass=batch.klass, twoside=back is not None)

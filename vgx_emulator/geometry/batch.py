@@ -262,7 +262,7 @@ class VertexBatch:
 
     __slots__ = ("pos", "ev", "ev_array", "ev_last", "synced", "attrs", "owner", "open", "vblocks", "vbase",
                  "xforms", "mats", "prims", "blocks", "swaps", "calls", "klass", "start",
-                 "dirty", "xf_dirty")
+                 "dirty", "xf_dirty", "kept")
 
     def __init__(self):
         self.pos = []               # flat x, y, z, w after the last vertex block
@@ -286,6 +286,7 @@ class VertexBatch:
         self.synced = 0
         self.vblocks = []           # earlier vertices: [(pos (n, 4), records (n, RECORD))]
         self.vbase = 0              # vertices in vblocks
+        self.kept = True            # every vblock is kept by a display list (add_vertices)
         self.xforms = []
         self.mats = []              # (material, backmaterial, lmcolor overrides, lmcolor mode)
         self.prims = []             # flat kind, start, count, concave of immediate primitives
@@ -336,10 +337,13 @@ class VertexBatch:
             self.mats.append((st.material, st.backmaterial, st.mat_override, st.lmcolor))
         return len(self.mats) - 1
 
-    def add_vertices(self, pos, recs):
+    def add_vertices(self, pos, recs, kept=False):
         """Append (n, 4) positions with their (n, RECORD) records as one
-        block, after the immediate vertices (no primitive is open)."""
+        block, after the immediate vertices (no primitive is open).
+        ``kept``: arrays a display list keeps and hands again when replayed
+        in the same state (geometry.AssemblyCache.vertices)."""
         self._seal()
+        self.kept = self.kept and kept
         self.vblocks.append((pos, recs))
         self.vbase += len(pos)
         self.dirty = True
@@ -433,6 +437,7 @@ class VertexBatch:
         if self.pos:
             self.vblocks.append(self._tail())
             self.vbase += len(self.pos) >> 2
+            self.kept = False
             del self.pos[:]
         del self.ev[:]
         del self.attrs[:]
@@ -457,6 +462,7 @@ class VertexBatch:
         if pos is not None and len(pos):
             self.vblocks.append((pos, recs))
             self.vbase = len(pos)
+            self.kept = False
         self.xf_dirty = True
         self.record_attributes(st)
 
