@@ -346,6 +346,31 @@ def test_light_ambient_is_attenuated_for_local_lights():
     assert want[:3] == (102, 102, 102)          # 0.8 / (0.5 * 4)
 
 
+def test_ambient_pass_with_every_light_bound():
+    """Heidmann's ambient pass: an emission-and-ambient material drawn with
+    four local lights bound (colour, no ambient) under a local viewer gets
+    Em + Am * Alm and nothing from the lights (the lighting loop skips
+    them: docs/performance.md); with lmcolor(LMC_DIFFUSE) a colour call
+    gives the same material a diffuse colour, and the lights count again."""
+    _window()
+    m = _props(MAT_DEFAULTS, over={EMISSION: (.1, 0, .05), AMBIENT: (.5, .4, .3),
+                                   DIFFUSE: (0, 0, 0), SPECULAR: (0, 0, 0)})
+    lts = [_props(LIGHT_DEFAULTS, over={POSITION: (4.0 * k, 10, 30, 1),
+                                        LCOLOR: (1, .5, .25)}) for k in range(4)]
+    lm = _props(MODEL_DEFAULTS, over={AMBIENT: (.4, .4, .4), LOCALVIEWER: (1,)})
+    m, lights, lm = _define(m, lts, lm)
+    want = _check(m, lights, lm)
+    assert want[:3] == (77, 41, 43)             # (.1 + .2, .16, .05 + .12) * 255
+    lmcolor(LMC_DIFFUSE)
+    c3f((.5, .5, .5))
+    _polygon((0, 0, 1))
+    lit = dict(m)
+    lit[DIFFUSE] = (.5, .5, .5)
+    want_lit = _expected((LAST[0], LAST[1], 0.0), (0, 0, 1), lit, lights, lm)
+    _close(_rgba(), want_lit)
+    assert want_lit[0] > want[0] + 50           # the lights add their diffuse now
+
+
 SPOT_POS = (1.0, 14.0, 10.0, 1.0)          # 10 above the last vertex
 
 

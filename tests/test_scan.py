@@ -948,6 +948,28 @@ def _setup_inputs(seed, t, cull_some):
     return X, Y, Z, C, C, tris[:, 2].copy(), tris
 
 
+def test_setup_records_kept_for_batches_of_other_sizes(monkeypatch):
+    """scan.triangles._records: a batch takes the first rows of the
+    shortest free kept array long enough (the passes of a multipass frame
+    differ in size), a held one never, and the arrays kept stay within
+    _SPARE_BYTES (the newest always kept)."""
+    from vgx_emulator.scan import triangles as T
+    monkeypatch.setattr(T, "_spare", [])
+    big = T._records(1000)
+    small = T._records(100)                  # big is held: a new one
+    assert not np.shares_memory(big, small) and len(T._spare) == 2
+    addr = (big.ctypes.data, small.ctypes.data)
+    del big, small
+    again = T._records(80)                   # the shortest free one, 100 rows
+    assert again.shape == (80, T.T_COLUMNS) and again.ctypes.data == addr[1]
+    other = T._records(600)                  # 100 is held, 1000 free
+    assert other.ctypes.data == addr[0] and len(other) == 600
+    del again, other
+    monkeypatch.setattr(T, "_SPARE_BYTES", 1500 * T.T_COLUMNS * 8)
+    T._records(2000)                         # beyond the bound: the oldest go
+    assert [len(a) for a in T._spare] == [2000]
+
+
 def test_setup_records_reused_only_when_free_and_as_if_new():
     """setup_triangles takes the last batch's records when nothing holds
     them (scan.triangles._records) and writes every record a drawn triangle
@@ -967,10 +989,10 @@ def test_setup_records_reused_only_when_free_and_as_if_new():
     T._spare.clear()
     first = T.setup_triangles(*_setup_inputs(1, t, False), T.CULL_NONE, 0, 63, 0, 47,
                               interp=True)
-    mark = id(first[0])
+    mark = first[0].ctypes.data                      # (an address: no reference)
     del first
     again = T.setup_triangles(*_setup_inputs(2, t, True), T.CULL_BACK, 0, 63, 0, 47)
-    assert id(again[0]) == mark                      # the free records were taken
+    assert again[0].ctypes.data == mark              # the free records were taken
     drawn = fresh[2][:, 0] <= fresh[2][:, 1]
     assert 0 < drawn.sum() < t
     np.testing.assert_array_equal(again[2], fresh[2])

@@ -132,8 +132,17 @@ def light_vertices(idx, eye4, recs, nmats, renorm, mtab, override_flag, redirect
                 vx, vy, vz = -px / lv, -py / lv, -pz / lv
             else:
                 vx = vy = vz = 0.0
+        # a light adds nothing to a vertex whose material (after lmcolor)
+        # has no diffuse and no specular colour, unless the light has an
+        # ambient colour and the material too: the ambient pass of a
+        # multipass program, drawn with every light bound, skips them
+        unlit = dr == 0.0 and dg == 0.0 and db == 0.0 and sr == 0.0 and sg == 0.0 and sb == 0.0
+        no_ambient = ar == 0.0 and ag == 0.0 and ab == 0.0
         for j in range(ltab.shape[0]):
             L = ltab[j]
+            if unlit and (no_ambient or (L[L_AMB] == 0.0 and L[L_AMB + 1] == 0.0
+                                         and L[L_AMB + 2] == 0.0)):
+                continue
             factor = 1.0
             if L[L_POS + 3] == 0.0:
                 lx, ly, lz = L[L_POS], L[L_POS + 1], L[L_POS + 2]

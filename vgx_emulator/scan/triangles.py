@@ -61,6 +61,7 @@ each array), the others ``helper``.
 import functools
 import math
 import sys
+import threading
 
 import numba
 import numpy as np
@@ -221,23 +222,39 @@ def triangle_planes(rec, i, X, Y, Z, cols, pv, ia, interp, cmode):
 _setup_kernel = _make_setup()
 
 
-#: the setup records of the last batch set up: the next batch of as many
-#: triangles takes them once no pass holds them any more (a display list
-#: replayed every frame; a new 12 MB array faulted its pages in again:
-#: 0.4 ms of a 40k-triangle setup)
+#: setup records of earlier batches, for the next ones to take once no pass
+#: holds them any more (a display list replayed every frame, the passes of a
+#: multipass frame: a new array faults its pages in again, 0.4 ms of a
+#: 40k-triangle setup); a batch takes the first rows of the shortest free
+#: one long enough.  At most _SPARE_BYTES are kept.
 _spare = []
+_spare_lock = threading.Lock()
+_SPARE_BYTES = 48 << 20
 
 
 def _records(t):
-    """A (t, T_COLUMNS) int64 array for setup_triangles: the spare one when
-    it has t rows and nothing else refers to it, else a new one."""
-    rec = _spare.pop() if _spare else None      # (pop: atomic between threads)
-    # the references: ``rec`` and getrefcount's argument; a queued or
-    # running pass holding its setup adds its own
-    if rec is None or len(rec) != t or sys.getrefcount(rec) != 2:
+    """A (t, T_COLUMNS) int64 array for setup_triangles: the first rows of
+    a kept one when nothing else refers to it, else a new one (kept)."""
+    with _spare_lock:
+        best = None
+        for base in _spare:
+            # the references of a free one: the list, ``base`` and
+            # getrefcount's argument; a queued or running pass holding its
+            # setup (a view of it) adds its own
+            if len(base) >= t and sys.getrefcount(base) == 3 and \
+                    (best is None or len(base) < len(best)):
+                best = base
+        if best is not None:
+            return best[:t]
         rec = np.zeros((t, T_COLUMNS), np.int64)
-    _spare[:] = [rec]
-    return rec
+        _spare.append(rec)
+        total = sum(x.nbytes for x in _spare)
+        for old in list(_spare[:-1]):           # the oldest first
+            if total <= _SPARE_BYTES:
+                break
+            _spare.remove(old)
+            total -= old.nbytes
+        return rec
 
 
 def setup_triangles(X, Y, Z, C, CB, prov, tris, cull, sx0, sx1, sy0, sy1,
