@@ -95,10 +95,12 @@ def _product(pos, m, out):
         np.matmul(pos[s:s + _PRODUCT_ROWS], m, out=out[s:s + _PRODUCT_ROWS])
 
 
-def _transform(pos, attrs, xforms):
+def _transform(pos, attrs, xforms, xf=None):
     """Eye and clip coordinates of every vertex under its run's matrices
-    (row vectors times the modelview and modelview x projection)."""
-    xf = attrs[:, 8].astype(np.int64)
+    (row vectors times the modelview and modelview x projection); ``xf``
+    the transform column of ``attrs`` as int64, when the caller has it."""
+    if xf is None:
+        xf = attrs[:, 8].astype(np.int64)
     eye, clp = np.empty((len(pos), 4)), np.empty((len(pos), 4))
     if not len(pos):
         return eye, clp, xf
@@ -135,11 +137,13 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
     lit with the material and lmcolor mode in force when it was sent
     (attribute column 13: its entry in ``mats``).  Under LMC_COLOR a vertex
     whose last call was a colour, not a normal, takes that colour unlit."""
-    col = attrs[:, 3:7].copy()
     if not lighting_active(st, defs):
-        return col, None
+        return attrs[:, 3:7].copy(), None
     modes = np.array([m[3] for m in mats] or [st.lmcolor], np.int64)
-    if len(modes) == 1 and modes[0] != lighting.LMC_COLOR:
+    every = len(modes) == 1 and modes[0] != lighting.LMC_COLOR
+    # (colours the RGB pass writes for every vertex need no copy first)
+    col = np.empty((len(attrs), 4)) if every and st.rgb else attrs[:, 3:7].copy()
+    if every:
         idx = np.arange(len(col))           # (one mode that lights every vertex)
     else:
         after_normal = (attrs[:, 7].astype(np.int64) & LAST_WAS_NORMAL) != 0
@@ -171,7 +175,7 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
     lighting.shade_rgb(geom, front, lights, model, col, modes)
     if model[lighting.TWOSIDE][0] == 0.0:
         return col, None
-    back = attrs[:, 3:7].copy()
+    back = np.empty((len(attrs), 4)) if every else attrs[:, 3:7].copy()
     lighting.shade_rgb(geom, back_mats, lights, model, back, modes, sign=-1.0)
     return col, back
 
@@ -220,7 +224,8 @@ class AssemblyCache:
 
     def vertices(self, batch):
         """(pos (N, 4), attrs (N, RECORD), bad (N,) bool: a non-finite
-        position or attribute) of the batch.  A batch of replayed blocks
+        position or attribute, xf (N,) int64: each vertex's transform) of
+        the batch (input_vertices).  A batch of replayed blocks
         only (display lists: the same run arrays, and the same records in
         the same state, frame after frame) is looked up by the identity of
         its blocks, so that a scene redrawn every pass is concatenated and
@@ -267,13 +272,14 @@ class AssemblyCache:
 
 
 def input_vertices(batch):
-    """(pos, attrs, bad) of a batch: its vertex arrays and which vertices
-    have a non-finite position or attribute (AssemblyCache.vertices)."""
+    """(pos, attrs, bad, xf) of a batch: its vertex arrays, which vertices
+    have a non-finite position or attribute, and each vertex's transform
+    (attrs column 8 as int64) (AssemblyCache.vertices)."""
     pos, attrs = batch.arrays()
     bad = np.zeros(len(pos), bool)
     clip.mark_nonfinite(pos, 4, bad)
     clip.mark_nonfinite(attrs, 7, bad)
-    return pos, attrs, bad
+    return pos, attrs, bad, attrs[:, 8].astype(np.int64)
 
 
 def assemble_triangles(batch, pos, table):
@@ -338,13 +344,13 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     ``shade`` False (the pass uses no colour): vertex colours pass through
     unlit.  ``assembled``: the machine's AssemblyCache (None: assemble
     anew)."""
-    pos, attrs, bad = (assembled.vertices(batch) if assembled is not None
-                       else input_vertices(batch))
+    pos, attrs, bad, xf = (assembled.vertices(batch) if assembled is not None
+                           else input_vertices(batch))
     bad = bad.copy()                    # (the input's marks may be kept: AssemblyCache)
     # (one errstate for the per-vertex stages: non-finite input, normals
     # or matrices are dropped with a VGXWarning below; 2 us a context)
     with np.errstate(all="ignore"):
-        eye4, clp, xf = _transform(pos, attrs, batch.xforms)
+        eye4, clp, xf = _transform(pos, attrs, batch.xforms, xf)
         tc = texture_coordinates(st, pos, eye4, attrs, xf, batch.xforms) if texturing else None
         col, back = _light(st, defs, eye4, attrs, xf, batch.xforms, batch.mats) if shade else \
             (attrs[:, 3:7].copy(), None)
