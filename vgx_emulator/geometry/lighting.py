@@ -183,31 +183,23 @@ def _shininess(mats, mid, n):
 
 
 def _material_table(mats):
-    """(M, shade.MCOLS) rows of material property dicts."""
-    t = np.empty((len(mats), shade.MCOLS))
-    for k, m in enumerate(mats):
-        t[k, shade.M_EM:shade.M_EM + 3] = m[EMISSION]
-        t[k, shade.M_AM:shade.M_AM + 3] = m[AMBIENT]
-        t[k, shade.M_DM:shade.M_DM + 3] = m[DIFFUSE]
-        t[k, shade.M_SM:shade.M_SM + 3] = m[SPECULAR]
-        t[k, shade.M_ALPHA] = m[ALPHA][0]
-        t[k, shade.M_SH] = m[SHININESS][0]
-    return t
+    """(M, shade.MCOLS) rows of material property dicts (the columns in
+    shade's order: Em, Am, Dm, Sm, ALPHA, SHININESS)."""
+    rows = [(*m[EMISSION], *m[AMBIENT], *m[DIFFUSE], *m[SPECULAR], m[ALPHA][0],
+             m[SHININESS][0]) for m in mats]
+    return np.array(rows, np.float64).reshape(len(mats), shade.MCOLS)
 
 
 def _light_table(lights):
-    """(L, shade.LCOLS) rows of [(props, LightBinding)]."""
-    t = np.zeros((len(lights), shade.LCOLS))
-    for k, (props, bind) in enumerate(lights):
-        t[k, shade.L_POS:shade.L_POS + 4] = bind.eye_position
-        t[k, shade.L_COL:shade.L_COL + 3] = props[LCOLOR]
-        t[k, shade.L_AMB:shade.L_AMB + 3] = props[AMBIENT]
-        t[k, shade.L_SPOT:shade.L_SPOT + 3] = bind.eye_spot
+    """(L, shade.LCOLS) rows of [(props, LightBinding)] (the columns in
+    shade's order: eye POSITION, LCOLOR, AMBIENT, eye SPOTDIRECTION,
+    exponent, cos(spread), spot or not)."""
+    rows = []
+    for props, bind in lights:
         expo, spread = props[SPOTLIGHT]
-        t[k, shade.L_EXPO] = expo
-        t[k, shade.L_COS] = math.cos(math.radians(spread))
-        t[k, shade.L_ISSPOT] = spread != 180.0
-    return t
+        rows.append((*bind.eye_position, *props[LCOLOR], *props[AMBIENT], *bind.eye_spot,
+                     expo, math.cos(math.radians(spread)), float(spread != 180.0)))
+    return np.array(rows, np.float64).reshape(len(lights), shade.LCOLS)
 
 
 def _model_row(model):
