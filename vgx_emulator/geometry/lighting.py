@@ -158,7 +158,7 @@ class LightBinding:
         self.eye_position = np.asarray(props[POSITION], np.float64) @ mv
         nm, _ = normal_matrix(mv)
         d = np.asarray(props[SPOTDIRECTION], np.float64) @ nm
-        n = np.linalg.norm(d)
+        n = math.sqrt(float(d @ d))         # (what np.linalg.norm computes, without its checks)
         self.eye_spot = d / n if n > 0 else d
 
 
