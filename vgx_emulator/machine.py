@@ -151,7 +151,7 @@ class VGX:
         b = win.batch
         self.W, self.B, self.st, self.P, self.E = win, b, win.st, b.pos, b.ev
         self.EC = b.ev if win.st.rgb else None
-        self.V = b.pos.extend if b.open is not None else _closed
+        self.V = b.extend if b.open is not None else _closed
 
     def reset(self):
         """Power-on state: no windows, default colour map, empty definitions
@@ -478,7 +478,7 @@ class VGX:
         if b.dirty:
             b.record_attributes(win.st)
         if win is self.W:
-            self.V = b.pos.extend
+            self.V = b.extend
 
     def end(self, win, kind, call):
         """endpolygon(3G) and the other end* calls: close the primitive.  A
@@ -509,7 +509,7 @@ class VGX:
         b.open = None
         if win is self.W:
             self.V = _closed
-        if b.nverts >= config.FLUSH_VERTICES:
+        if nverts >= config.FLUSH_VERTICES:   # (the primitive's end adds no vertex)
             self._flush(win)                # the raster thread draws while the program goes on
         if self.display_hook is not None:
             self.display_hook(win)          # a real window: drawing shows as it happens

@@ -260,12 +260,13 @@ def _events(ev):
 class VertexBatch:
     """One window's vertex stream (see the module docstring)."""
 
-    __slots__ = ("pos", "ev", "ev_array", "ev_last", "synced", "attrs", "owner", "open", "vblocks", "vbase",
+    __slots__ = ("pos", "extend", "ev", "ev_array", "ev_last", "synced", "attrs", "owner", "open", "vblocks", "vbase",
                  "xforms", "mats", "prims", "blocks", "swaps", "calls", "klass", "start",
                  "dirty", "xf_dirty", "kept")
 
     def __init__(self):
         self.pos = []               # flat x, y, z, w after the last vertex block
+        self.extend = self.pos.extend   # (the v* calls' handle inside bgn/end: VGX.begin)
         self.ev = []                # flat attribute events (EVW numbers) for ``pos``
         self.ev_array = None        # ev as the last flush converted it
         self.ev_last = None         # with it, the newest normal, texture, colour event (sync)
