@@ -140,22 +140,24 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
     if not lighting_active(st, defs):
         return attrs[:, 3:7].copy(), None
     modes = np.array([m[3] for m in mats] or [st.lmcolor], np.int64)
-    every = len(modes) == 1 and modes[0] != lighting.LMC_COLOR
+    colour_mode = modes == lighting.LMC_COLOR
+    every = not colour_mode.any()           # (no LMC_COLOR: every vertex is lit)
     # (colours the RGB pass writes for every vertex need no copy first)
     col = np.empty((len(attrs), 4)) if every and st.rgb else attrs[:, 3:7].copy()
     if every:
-        idx = np.arange(len(col))           # (one mode that lights every vertex)
+        idx = np.arange(len(col))
     else:
         after_normal = (attrs[:, 7].astype(np.int64) & LAST_WAS_NORMAL) != 0
-        lit = after_normal if len(modes) == 1 else \
-            (modes[attrs[:, 13].astype(np.int64)] != lighting.LMC_COLOR) | after_normal
+        lit = after_normal if colour_mode.all() else \
+            ~colour_mode[attrs[:, 13].astype(np.int64)] | after_normal
         idx = np.nonzero(lit)[0]
         if not len(idx):
             return col, None
     nm = [lighting.normal_matrix(t.modelview) for t in xforms]
     front, back_mats = _materials(st, defs, mats)
     model = defs[lighting.DEFLMODEL][st.lmodel]
-    lights = [(defs[lighting.DEFLIGHT].get(b.index, lighting.defaults(lighting.DEFLIGHT)), b)
+    ldefs = defs[lighting.DEFLIGHT]
+    lights = [(ldefs[b.index] if b.index in ldefs else lighting.defaults(lighting.DEFLIGHT), b)
               for _, b in sorted(st.lights.items())]
     if not st.rgb:
         mid = attrs[idx, 13].astype(np.int64) if len(front) > 1 else None
