@@ -11,7 +11,7 @@ import pytest
 from vgx_emulator.geometry.batch import (COLOUR_SINCE_BIND, EV_BYTE, EV_COLOUR, EV_CPACK,
                                          EV_NORMAL, EV_REC, EV_TEX, EV_UNIT, LAST_WAS_NORMAL,
                                          R_COLOUR, R_FLAGS, R_MATERIAL, R_NORMAL, R_STRQ,
-                                         RECORD, _doubles, _events, colour_value,
+                                         RECORD, _events, _packed, colour_value,
                                          per_vertex)
 
 
@@ -130,12 +130,18 @@ def test_events_convert_every_value_as_fromiter_does(m):
     assert np.array_equal(got, want, equal_nan=True)
 
 
-def test_doubles_converts_as_fromiter_and_raises_as_it_does():
+def test_packed_converts_as_fromiter_and_raises_as_it_does():
     vals = [1.5, 2, -0.0, NAN, INF, np.float64(3.25), True]
-    assert np.array_equal(_doubles(vals), np.fromiter(vals, np.float64), equal_nan=True)
-    assert _doubles(vals).flags.writeable
-    assert _doubles([]).shape == (0,)
+    assert np.array_equal(_packed(vals, np.float64), np.fromiter(vals, np.float64),
+                          equal_nan=True)
+    assert _packed(vals, np.float64).flags.writeable
+    assert _packed([], np.float64).shape == (0,)
     with pytest.raises(OverflowError):
-        _doubles([1.0, 10 ** 400])
+        _packed([1.0, 10 ** 400], np.float64)
     with pytest.raises((TypeError, ValueError)):
-        _doubles([1.0, "x"])
+        _packed([1.0, "x"], np.float64)
+    ints = [3, 0, 2 ** 40, -7, True, np.int64(5)]        # the primitive table's values
+    got = _packed(ints, np.int64)
+    assert got.dtype == np.int64 and got.tolist() == [3, 0, 2 ** 40, -7, 1, 5]
+    with pytest.raises(OverflowError):                  # (never a silent cut)
+        _packed([1, 2 ** 70], np.int64)

@@ -14,8 +14,8 @@ Immediate mode leaves two flat Python lists, appended to by one C call each:
   attributes are read through `sync`, which takes the newest events.
 
 No Python runs per vertex at the flush: `arrays` converts the lists with
-struct (`_doubles`, `_events`) and replays the events over the vertices in one compiled
-pass (`per_vertex`).  Display-list
+struct (`_packed`, `_events`) and replays the events over the vertices in
+one compiled pass (`per_vertex`).  Display-list
 replay, NURBS and curveit append whole blocks of positions and records
 (`add_vertices`); the immediate lists then continue after them.  Vertex
 numbers in primitives and swaps are global over blocks + lists.  A batch
@@ -201,28 +201,21 @@ _EV_RECORD = np.dtype([("at", "<i8"), ("kind", "<i8"), ("v", "<f8", (4,))])
 _EV_PAD = [0] * (EVW * _EV_CHUNK)
 
 
-def _doubles(values):
-    """A list of Python numbers as a new float64 array (one struct pack;
-    np.fromiter where struct refuses a value, which then raises as before)."""
+#: _packed: the struct code of each array type it makes
+_PACK_CODES = {np.float64: "d", np.int64: "q"}
+
+
+def _packed(values, dtype):
+    """A list of Python numbers as a new ``dtype`` (float64 or int64) array:
+    one struct pack; np.fromiter where struct refuses a value, which then
+    raises as before."""
     n = len(values)
     buf = bytearray(8 * n)
     try:
-        struct.pack_into(f"<{n}d", buf, 0, *values)
+        struct.pack_into(f"<{n}{_PACK_CODES[dtype]}", buf, 0, *values)
     except (struct.error, OverflowError, TypeError):
-        return np.fromiter(values, np.float64, n)
-    return np.frombuffer(buf, np.float64)
-
-
-def _int64s(values):
-    """A list of Python ints (the primitive table) as a new int64 array
-    (one struct pack; np.array where struct refuses a value)."""
-    n = len(values)
-    buf = bytearray(8 * n)
-    try:
-        struct.pack_into(f"<{n}q", buf, 0, *values)
-    except (struct.error, OverflowError, TypeError):
-        return np.array(values, np.int64)
-    return np.frombuffer(buf, np.int64)
+        return np.fromiter(values, dtype, n)
+    return np.frombuffer(buf, dtype)
 
 
 def _events(ev):
@@ -260,8 +253,8 @@ def _events(ev):
 class VertexBatch:
     """One window's vertex stream (see the module docstring)."""
 
-    __slots__ = ("pos", "extend", "ev", "ev_array", "ev_last", "synced", "attrs", "owner", "open", "vblocks", "vbase",
-                 "xforms", "mats", "prims", "blocks", "swaps", "calls", "klass", "start",
+    __slots__ = ("pos", "extend", "ev", "ev_array", "ev_last", "synced", "attrs", "owner",
+                 "open", "vblocks", "vbase", "xforms", "mats", "prims", "blocks", "swaps", "calls", "klass", "start",
                  "dirty", "xf_dirty", "kept")
 
     def __init__(self):
@@ -354,7 +347,7 @@ class VertexBatch:
         (display-list replay, NURBS, curveit: ``call`` names it in warnings),
         after the immediate ones already recorded."""
         if self.prims:
-            self.blocks.append(_int64s(self.prims).reshape(-1, 4))
+            self.blocks.append(_packed(self.prims, np.int64).reshape(-1, 4))
             self.prims = []
         self.blocks.append(table)
         self.calls.add(call)
@@ -381,7 +374,7 @@ class VertexBatch:
     def _tail(self):
         """(positions (n, 4), records (n, RECORD)) of the immediate lists."""
         n = len(self.pos) >> 2
-        pos = _doubles(self.pos).reshape(n, 4)
+        pos = _packed(self.pos, np.float64).reshape(n, 4)
         ev = self.ev_array = _events(self.ev)
         recs = np.array(self.attrs, np.float64).reshape(-1, RECORD)
         out, self.ev_last = per_vertex(ev, recs, n, self.mats)
@@ -482,7 +475,7 @@ class VertexBatch:
         """Every primitive of the batch in submission order, (P, 4) int64."""
         parts = list(self.blocks)
         if self.prims:
-            parts.append(_int64s(self.prims).reshape(-1, 4))
+            parts.append(_packed(self.prims, np.int64).reshape(-1, 4))
         if not parts:
             return np.zeros((0, 4), np.int64)
         return parts[0] if len(parts) == 1 else np.concatenate(parts)
