@@ -46,6 +46,8 @@ defpattern(1, 16, [0x5555, 0xaaaa] * 8); setpattern(1); rectf(0, 0, 31, 31); set
 cmov2(2, 2); charstr("Ab")
 gflush()
 print(int(lrectread(5, 5, 5, 5)[0, 0]))
+import sys
+print("refreshed:", "numba.misc.cffiimpl" in sys.modules, "scipy.linalg" in sys.modules)
 print("compiled:", " ".join(compiled.names))
 """
 
@@ -56,8 +58,8 @@ def _run(cache_dir):
     r = subprocess.run([sys.executable, "-c", SCRIPT], capture_output=True, text=True,
                        timeout=900, env=env)
     assert r.returncode == 0, r.stderr[-3000:]
-    pixel, compiled = r.stdout.strip().split("\n")[-2:]
-    return pixel, compiled.split()[1:]
+    pixel, refreshed, compiled = r.stdout.strip().split("\n")[-3:]
+    return pixel, compiled.split()[1:], refreshed.split()[1:]
 
 
 def test_the_next_process_compiles_nothing(tmp_path):
@@ -66,11 +68,32 @@ def test_the_next_process_compiles_nothing(tmp_path):
     rectcopy, stencil, blend, a pattern, text.  (A kernel whose cache key
     differed between processes, e.g. a closure cell that pickled with a
     fresh id, was compiled again by every process.)"""
-    first_pixel, first = _run(tmp_path)
+    first_pixel, first, refreshed = _run(tmp_path)
     assert first                               # the first process did compile
-    pixel, again = _run(tmp_path)
+    assert refreshed == ["True", "False"]      # numba's registries, not its BLAS probe
+    pixel, again, refreshed = _run(tmp_path)
     assert again == []
     assert pixel == first_pixel
+    assert refreshed == ["False", "False"]     # loads alone refresh nothing (jit._lean_cache_loads)
+
+
+def test_a_compile_after_cache_loads_refreshes_numba(tmp_path):
+    """A process whose kernels all came from the disk cache (so numba's
+    registries were never refreshed, jit._lean_cache_loads) still compiles
+    a new function, with numba's full registries (np.linalg needs them)."""
+    _run(tmp_path)
+    script = DRAW + r"""
+import sys, numba, numpy as np
+assert "numba.misc.cffiimpl" not in sys.modules
+f = numba.njit(lambda a: np.sum(a * 2.0) + len(str(3)))
+print(f(np.arange(4.0)))
+"""
+    import os
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    r = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                       timeout=600, env=env)
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert r.stdout.split()[-1] == "13.0"
 
 
 DRAW = r"""

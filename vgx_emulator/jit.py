@@ -27,13 +27,13 @@ _PKG = Path(__file__).resolve().parent
 
 
 def _skip_blas_probe():
-    """numba's first compile or cache load of a process imports
-    numba.np.arraymath, which probes for BLAS by importing scipy.linalg
-    (0.2-0.6 s of a warm start; ``import numba`` has already imported
-    scipy itself).  No kernel of the emulator uses numba's linear algebra,
-    so arraymath is imported here with scipy.linalg hidden: numba then
-    records that it has no BLAS, and scipy.linalg stays importable for
-    everything else."""
+    """numba's first registry refresh of a process (before a compile)
+    imports numba.np.arraymath, which probes for BLAS by importing
+    scipy.linalg (0.2-0.6 s; ``import numba`` has already imported scipy
+    itself).  No kernel of the emulator uses numba's linear algebra, so
+    arraymath is imported with scipy.linalg hidden: numba then records
+    that it has no BLAS, and scipy.linalg stays importable for everything
+    else."""
     if "scipy.linalg" in sys.modules or "numba.np.arraymath" in sys.modules:
         return
     hidden = [m for m in ("scipy.linalg", "scipy.linalg.cython_blas") if m not in sys.modules]
@@ -47,7 +47,41 @@ def _skip_blas_probe():
                 del sys.modules[m]
 
 
-_skip_blas_probe()
+def _lean_cache_loads():
+    """numba refreshes its whole typing and target registries before it
+    loads a kernel from the disk cache: at a process's first load that
+    imports and installs every implementation numba has (cffi and pycparser
+    among them), 0.3-0.45 s of a 1.5 s filled-cache start.  Machine code read
+    from the cache needs none of it, only the NRT runtime's symbols, which a
+    load here initialises.  A compile still refreshes everything (numba's
+    compiler does so itself), and that refresh skips the BLAS probe
+    (:func:`_skip_blas_probe`).  Left as numba has it if its cache class
+    lacks the methods this relies on."""
+    from numba.core import cpu
+    from numba.core.runtime import nrt
+    cls = caching.Cache
+    if getattr(cls, "_vgx_lean", False) or not all(
+            hasattr(cls, m) for m in ("_load_overload", "_guard_against_spurious_io_errors")):
+        return
+
+    def load_overload(self, sig, target_context):
+        nrt.rtsys.initialize(target_context)
+        with self._guard_against_spurious_io_errors():
+            return self._load_overload(sig, target_context)
+        # None (a miss) when the guard swallowed a spurious I/O error
+
+    load_registries = cpu.CPUContext.load_additional_registries
+
+    def load_additional_registries(self):
+        _skip_blas_probe()
+        load_registries(self)
+
+    cls.load_overload = load_overload
+    cpu.CPUContext.load_additional_registries = load_additional_registries
+    cls._vgx_lean = True
+
+
+_lean_cache_loads()
 
 
 _cache_warned = []
