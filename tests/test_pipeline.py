@@ -332,3 +332,38 @@ def test_num_threads_is_numbas_count_of_the_calling_thread():
         numba.set_num_threads(n)
     assert pipeline.num_threads() == n
     assert seen == [numba.get_num_threads()]
+
+
+def test_the_walkers_threads_follow_the_batch_area(open_window, monkeypatch):
+    """run_bands walks a batch on several threads only when its triangles'
+    boxes cover config.PARALLEL_MIN_PIXELS or more, estimated from every
+    step-th triangle (scan.triangles.AREA_SAMPLE) in a large batch: 4,608
+    triangles whose setup boxes are 4 x 4 pixels (73,728 pixels; each square
+    of two draws 3 x 3 pixels) stay on one thread under a threshold of
+    80,000 and go to the threads under 60,000, which the estimate tells
+    apart; the pixels are the same either way."""
+    from vgx_emulator.scan import triangles
+    if pipeline.num_threads() < 2 or not config.PARALLEL:
+        pytest.skip("one thread: nothing to share")
+    monkeypatch.setattr(config, "PIPELINE", False)
+    monkeypatch.setattr(config, "SETUP_SHARE", 1 << 30)     # only the walker in shares
+    calls = []
+    real = pipeline.on_threads
+    monkeypatch.setattr(pipeline, "on_threads", lambda *a: (calls.append(a[1]), real(*a)))
+
+    def draw(threshold):
+        monkeypatch.setattr(config, "PARALLEL_MIN_PIXELS", threshold)
+        open_window(256, 256, cleared=True)
+        for j in range(48):                    # 48 x 48 squares of two triangles
+            for i in range(48):
+                cpack(0xFF000000 | (i * 5 << 8) | j * 5)
+                _square(5 * i + 2, 5 * j + 2, 5 * i + 5, 5 * j + 5)
+        calls.clear()
+        machine.flush()
+        return list(calls), machine.current.fb.front.copy()
+
+    assert 48 * 48 * 2 > 2 * triangles.AREA_SAMPLE        # the estimate samples
+    one, a = draw(80_000)
+    many, b = draw(60_000)
+    assert one == [] and len(many) == 1 and many[0] > 1
+    assert np.array_equal(a, b) and (a != 0).sum() == 48 * 48 * 9

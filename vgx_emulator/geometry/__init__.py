@@ -141,15 +141,18 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
         return attrs[:, 3:7].copy(), None
     modes = np.array([m[3] for m in mats] or [st.lmcolor], np.int64)
     colour_mode = modes == lighting.LMC_COLOR
-    every = not colour_mode.any()           # (no LMC_COLOR: every vertex is lit)
-    # (colours the RGB pass writes for every vertex need no copy first)
-    col = np.empty((len(attrs), 4)) if every and st.rgb else attrs[:, 3:7].copy()
-    if every:
-        idx = np.arange(len(col))
-    else:
+    lit = None                              # (None: every vertex is lit)
+    if colour_mode.any():
         after_normal = (attrs[:, 7].astype(np.int64) & LAST_WAS_NORMAL) != 0
         lit = after_normal if colour_mode.all() else \
             ~colour_mode[attrs[:, 13].astype(np.int64)] | after_normal
+        if lit.all():                       # (n3f before every vertex, the common case)
+            lit = None
+    # (colours the RGB pass writes for every vertex need no copy first)
+    col = np.empty((len(attrs), 4)) if lit is None and st.rgb else attrs[:, 3:7].copy()
+    if lit is None:
+        idx = np.arange(len(col))
+    else:
         idx = np.nonzero(lit)[0]
         if not len(idx):
             return col, None
@@ -177,7 +180,7 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
     lighting.shade_rgb(geom, front, lights, model, col, modes)
     if model[lighting.TWOSIDE][0] == 0.0:
         return col, None
-    back = np.empty((len(attrs), 4)) if every else attrs[:, 3:7].copy()
+    back = np.empty((len(attrs), 4)) if lit is None else attrs[:, 3:7].copy()
     lighting.shade_rgb(geom, back_mats, lights, model, back, modes, sign=-1.0)
     return col, back
 
