@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from vgx_emulator.errors import GLError, fail, is_lenient, report
+from vgx_emulator.errors import GLError, fail, fp_quiet, fp_restore, is_lenient, report
 from vgx_emulator.machine import VGX
 
 machine = VGX()
@@ -59,10 +59,13 @@ def glcall(fn=None, *, inside=False, immediate=False, status=IMPLEMENTED, why=""
                              "lmbind, lmcolor and swaptmesh may appear there")
                 # non-finite results are the machine's to report (a VGXWarning
                 # naming the call); numpy's own warnings never reach the user
-                with np.errstate(all="ignore"):
+                token = fp_quiet()
+                try:
                     if machine.call_hook is not None:    # trace.py: names the passes' calls
                         return machine.call_hook(name, f, args)
                     return f(*args)
+                finally:
+                    fp_restore(token)
             except GLError as e:
                 if is_lenient():
                     report(e)

@@ -432,3 +432,27 @@ def test_zclear_with_extra_argument(win):
     czclear(0, 0)
     zclear(0)                           # ignored even when it is not GD_ZMAX
     assert np.all(lrectread(0, 0, 15, 11) == ZMAX)
+
+
+def test_numpy_error_state_is_quiet_inside_a_call_and_restored_after(open_window):
+    """Every wrapped call runs with numpy's floating-point warnings off
+    (errors.fp_quiet) and leaves the program's own numpy error state as it
+    was, also when the call raises GLError or a nested call ran inside it."""
+    import numpy as np
+    from irisgl import translate
+    from vgx_emulator import errors
+    open_window(16, 16)
+    seen = []
+    with np.errstate(all="raise"):
+        before = np.geterr()
+        token = errors.fp_quiet()
+        seen.append(np.geterr())
+        errors.fp_quiet()                  # a nested quiet (a call inside a call)
+        errors.fp_restore(token)
+        assert np.geterr() == before
+        translate(1e308, 1e308, 1e308)     # overflows in the product: no FloatingPointError
+        assert np.geterr() == before
+        with pytest.raises(GLError):
+            translate("a", 0, 0)
+        assert np.geterr() == before
+    assert set(seen[0].values()) == {"ignore"} and set(before.values()) == {"raise"}

@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from ..errors import fp_quiet, fp_restore
+
 MSINGLE, MPROJECTION, MVIEWING, MTEXTURE = 0, 1, 2, 3
 STACK_DEPTH = 32           # MATRIXSTACKDEPTH
 
@@ -24,8 +26,11 @@ def as_matrix(m):
 
 def premultiply(t, c):
     """``T . C`` in float64, stored as float32."""
-    with np.errstate(all="ignore"):       # non-finite matrices are reported at the flush
+    token = fp_quiet()          # non-finite matrices are reported at the flush
+    try:
         return (np.asarray(t, np.float64) @ np.asarray(c, np.float64)).astype(np.float32)
+    finally:
+        fp_restore(token)
 
 
 def translation(x, y, z):
