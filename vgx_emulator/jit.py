@@ -55,13 +55,22 @@ def _lean_cache_loads():
     from the cache needs none of it, only the NRT runtime's symbols, which a
     load here initialises.  A compile still refreshes everything (numba's
     compiler does so itself), and that refresh skips the BLAS probe
-    (:func:`_skip_blas_probe`).  Left as numba has it if its cache class
-    lacks the methods this relies on."""
+    (:func:`_skip_blas_probe`).  Loads are left as numba has them if its
+    cache class lacks the methods this relies on."""
     from numba.core import cpu
     from numba.core.runtime import nrt
     cls = caching.Cache
-    if getattr(cls, "_vgx_lean", False) or not all(
-            hasattr(cls, m) for m in ("_load_overload", "_guard_against_spurious_io_errors")):
+    if getattr(cls, "_vgx_lean", False):
+        return
+    cls._vgx_lean = True
+    load_registries = cpu.CPUContext.load_additional_registries
+
+    def load_additional_registries(self):
+        _skip_blas_probe()
+        load_registries(self)
+
+    cpu.CPUContext.load_additional_registries = load_additional_registries
+    if not all(hasattr(cls, m) for m in ("_load_overload", "_guard_against_spurious_io_errors")):
         return
 
     def load_overload(self, sig, target_context):
@@ -70,15 +79,7 @@ def _lean_cache_loads():
             return self._load_overload(sig, target_context)
         # None (a miss) when the guard swallowed a spurious I/O error
 
-    load_registries = cpu.CPUContext.load_additional_registries
-
-    def load_additional_registries(self):
-        _skip_blas_probe()
-        load_registries(self)
-
     cls.load_overload = load_overload
-    cpu.CPUContext.load_additional_registries = load_additional_registries
-    cls._vgx_lean = True
 
 
 _lean_cache_loads()
