@@ -388,6 +388,45 @@ def test_lookat_along_y_uses_minus_z_up(win):
     np.testing.assert_allclose(xform((1, 0, 0)), (1, 0, -5, 1), atol=1e-6)
 
 
+def _lookat_numpy(vx, vy, vz, px, py, pz, twist):
+    """lookat(3G)'s matrix with numpy's norm and cross (the reference the
+    float form in geometry/stack.py must equal bit for bit)."""
+    from vgx_emulator.geometry import stack as S
+    fwd = np.array((px - vx, py - vy, pz - vz), np.float64)
+    fwd /= np.linalg.norm(fwd)
+    side = np.cross(fwd, (0.0, 1.0, 0.0))
+    if np.linalg.norm(side) < 1e-12 * max(1.0, np.abs(fwd).max()):
+        side = np.cross(fwd, (0.0, 0.0, -1.0))
+    side /= np.linalg.norm(side)
+    r = np.eye(4)
+    r[:3, 0], r[:3, 1], r[:3, 2] = side, np.cross(side, fwd), -fwd
+    return S.translation(-vx, -vy, -vz) @ r @ S.rotation(-twist / 10.0, "z")
+
+
+def test_lookat_matches_numpys_vector_formulas_bit_for_bit():
+    """geometry.stack.lookat works on Python floats (a third of the time);
+    its matrix is the one numpy's norm and cross give, to the last bit,
+    over random eyes, references and twists, near-vertical lines of sight
+    and a direction whose squares underflow (a non-finite matrix, no
+    exception)."""
+    from vgx_emulator.geometry import stack as S
+    rng = np.random.default_rng(7)
+    cases = [(0, 0, 5, 0, 0, 0, 0), (0, 5, 0, 0, 0, 0, 0), (0, -5, 0, 0, 0, 0, 300),
+             (1, 2, 3, 1, 2.0000001, 3, 0), (0, 0, 0, 1e-13, 1, 0, 0)]
+    for _ in range(3000):
+        v = rng.normal(size=7) * rng.choice([1e-3, 1.0, 100.0, 1e4])
+        v[6] = rng.uniform(-3600, 3600)
+        if rng.random() < 0.2:               # nearly along Y
+            v[3], v[5] = v[0], v[2] + rng.normal() * 1e-12
+        cases.append(tuple(float(x) for x in v))
+    for c in cases:
+        c = tuple(float(x) for x in c)
+        assert np.array_equal(S.lookat(*c), _lookat_numpy(*c)), c
+    with np.errstate(all="ignore"):
+        tiny = S.lookat(0.0, 0.0, 0.0, 1e-170, 0.0, 0.0, 0.0)
+    assert not np.isfinite(tiny).all()
+
+
 def test_lookat_premultiplies(win):
     translate(1, 0, 0)
     lookat(0, 0, 5, 0, 0, 0, 0)

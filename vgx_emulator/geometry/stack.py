@@ -113,29 +113,43 @@ def perspective(fovy_tenths, aspect, n, f):
 
 
 def _cross(a, b):
-    """a x b of 3-vectors (np.cross's formula; np.cross itself costs 0.05 ms
-    a call in array bookkeeping, lookat is called per pass)."""
-    return np.array((a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                     a[0] * b[1] - a[1] * b[0]))
+    """a x b of 3-vectors as tuples of floats (np.cross's formula)."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0])
+
+
+def _length(a):
+    """|a| of a 3-vector, summed in the order numpy's norm sums it."""
+    return math.sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2])
+
+
+def _unit(a):
+    """a / |a| of a 3-vector; NaNs when |a| is 0 (a direction whose squares
+    underflow: the matrix is then non-finite, and what is drawn under it
+    dropped with a warning, as numpy's division made it)."""
+    n = _length(a)
+    if n == 0.0:
+        return (math.nan, math.nan, math.nan)
+    return (a[0] / n, a[1] / n, a[2] / n)
 
 
 def lookat(vx, vy, vz, px, py, pz, twist_tenths):
     """lookat(3G) as ``T(-v) . R . Rz(-twist)`` (docs/semantics.md §2).
 
-    A line of sight parallel to Y takes -Z as the up reference.
+    A line of sight parallel to Y takes -Z as the up reference.  (The
+    vectors are Python floats: numpy's norm and cross on 3-vectors cost
+    20 us of bookkeeping a call, and lookat is called per pass.)
     """
-    fwd = np.array((px - vx, py - vy, pz - vz), np.float64)
-    fwd /= np.linalg.norm(fwd)
-    up = np.array((0.0, 1.0, 0.0))
-    side = _cross(fwd, up)
-    if np.linalg.norm(side) < 1e-12 * max(1.0, np.abs(fwd).max()):
-        side = _cross(fwd, np.array((0.0, 0.0, -1.0)))
-    side /= np.linalg.norm(side)
+    fwd = _unit((px - vx, py - vy, pz - vz))
+    side = _cross(fwd, (0.0, 1.0, 0.0))
+    if _length(side) < 1e-12 * max(1.0, abs(fwd[0]), abs(fwd[1]), abs(fwd[2])):
+        side = _cross(fwd, (0.0, 0.0, -1.0))
+    side = _unit(side)
     upv = _cross(side, fwd)
-    r = np.eye(4)
+    r = _EYE64.copy()
     r[:3, 0] = side
     r[:3, 1] = upv
-    r[:3, 2] = -fwd
+    r[:3, 2] = (-fwd[0], -fwd[1], -fwd[2])
     return translation(-vx, -vy, -vz) @ r @ rotation(-twist_tenths / 10.0, "z")
 
 
