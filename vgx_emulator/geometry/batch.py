@@ -22,6 +22,7 @@ numbers in primitives and swaps are global over blocks + lists.  A batch
 holds one class of primitive (filled, line or point) so that drawing order
 between classes is kept by flushing on a change.
 """
+import functools
 import struct
 
 import numpy as np
@@ -195,10 +196,16 @@ def _newest(back, kinds):
 #: values as doubles (struct takes a list of Python numbers to doubles in
 #: about half of np.fromiter's time, where both fields are ints)
 _EV_CHUNK = 256
-_EV_PACK = struct.Struct("<" + "qq4d" * _EV_CHUNK)
-_EV_PACK_ANY = struct.Struct("<" + "6d" * _EV_CHUNK)
 _EV_RECORD = np.dtype([("at", "<i8"), ("kind", "<i8"), ("v", "<f8", (4,))])
-_EV_PAD = [0] * (EVW * _EV_CHUNK)
+
+
+@functools.lru_cache(maxsize=None)
+def _event_packers(k):
+    """The struct packers of k events (k <= _EV_CHUNK): at and kind as int64
+    and the values as doubles, and all six as doubles.  (A last chunk packs
+    only its own events: padding it to a whole chunk cost a one-triangle
+    batch 256 events' packing.)"""
+    return struct.Struct("<" + "qq4d" * k), struct.Struct("<" + "6d" * k)
 
 
 #: _packed: the struct code of each array type it makes
@@ -223,20 +230,19 @@ def _events(ev):
     _EV_CHUNK events; a chunk whose at or kind is not an int (events made
     from an array: machine.py) is packed as doubles throughout."""
     m = len(ev) // EVW
-    step, size = EVW * _EV_CHUNK, _EV_PACK.size
-    full = m // _EV_CHUNK
-    buf = bytearray(size * (full + 1))
-    doubles = []                        # chunks packed by _EV_PACK_ANY
+    width = 8 * EVW                     # bytes an event
+    buf = bytearray(width * m)
+    doubles = []                        # (first, end) events packed as doubles
     try:
-        for c in range(full + 1):
-            part = ev[c * step:(c + 1) * step]
-            if len(part) < step:
-                part += _EV_PAD[:step - len(part)]
+        for lo in range(0, m, _EV_CHUNK):
+            hi = min(lo + _EV_CHUNK, m)
+            ints, floats = _event_packers(hi - lo)
+            part = ev[lo * EVW:hi * EVW]
             try:
-                _EV_PACK.pack_into(buf, c * size, *part)
+                ints.pack_into(buf, lo * width, *part)
             except struct.error:
-                _EV_PACK_ANY.pack_into(buf, c * size, *part)
-                doubles.append(c)
+                floats.pack_into(buf, lo * width, *part)
+                doubles.append((lo, hi))
     except (struct.error, OverflowError, TypeError):
         return np.fromiter(ev, np.float64, len(ev)).reshape(-1, EVW)
     rec = np.frombuffer(buf, _EV_RECORD, m)
@@ -244,9 +250,8 @@ def _events(ev):
     out[:, 0] = rec["at"]
     out[:, 1] = rec["kind"]
     out[:, 2:] = rec["v"]
-    for c in doubles:
-        lo, hi = c * _EV_CHUNK, min((c + 1) * _EV_CHUNK, m)
-        out[lo:hi] = np.frombuffer(buf, np.float64, EVW * (hi - lo), c * size).reshape(-1, EVW)
+    for lo, hi in doubles:
+        out[lo:hi] = np.frombuffer(buf, np.float64, EVW * (hi - lo), lo * width).reshape(-1, EVW)
     return out
 
 
