@@ -27,6 +27,7 @@ import struct
 
 import numpy as np
 
+from ..errors import fp_quiet, fp_restore
 from ..jit import helper, njit
 from .assemble import CLOSEDLINE, LINE, POINT, POLYGON, QSTRIP, TMESH
 
@@ -91,8 +92,11 @@ class Transform:
     def __init__(self, modelview, projection):
         self.modelview = modelview
         self.projection = projection
-        with np.errstate(all="ignore"):
+        token = fp_quiet()
+        try:
             self.clip = modelview @ projection
+        finally:
+            fp_restore(token)
 
 
 def attribute_record(st, xform, material):

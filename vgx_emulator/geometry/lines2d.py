@@ -23,6 +23,7 @@ import numpy as np
 
 from . import assemble, clip, viewport
 from .assemble import CLOSEDLINE, POLYGON, QSTRIP, TMESH
+from .batch import LINES, POINTS
 
 PYM_FILL, PYM_POINT, PYM_LINE, PYM_HOLLOW, PYM_LINE_FAST = 1, 2, 3, 4, 5
 MAX_WIDTH = 255                 # linewidth(3G): aliased widths 1..255 on the VGX
@@ -295,7 +296,6 @@ def smooth(work, st, closed, outline):
     cueing, whose colour-map index the coverage bits then refine): smooth
     lines become their coverage fragments as point rows, for the point
     kernel; smooth one-pixel points spread over 2 x 2 pixels."""
-    from .batch import LINES, POINTS
     if work.klass == LINES and st.linesmooth & SML_ON and work.seg0 is not None and \
             not (outline and st.polymode == PYM_HOLLOW):
         work.points = np.ascontiguousarray(smooth_line_points(
