@@ -302,7 +302,9 @@ class VertexBatch:
         self.xf_dirty = True        # matrices changed since the last Transform
 
     def __len__(self):
-        return len(self.prims) // 4 + sum(len(b) for b in self.blocks)
+        """Primitives so far (``if batch:`` asks it at every bgn* and flush)."""
+        n = len(self.prims) // 4
+        return n + sum(map(len, self.blocks)) if self.blocks else n
 
     @property
     def nverts(self):
