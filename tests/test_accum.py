@@ -7,6 +7,8 @@ row 0 at the bottom).  Rounding follows framebuffer/accum.py's documented
 rule: round to nearest (floor(v + 0.5)).
 """
 import math
+import threading
+import time
 
 from functools import partial
 
@@ -290,3 +292,90 @@ def test_heidmann_32_passes_average_exactly():
         for x in range(W):
             want = pack([min(max(rnd(t / 32), 0), 255) for t in total[y, x]])
             assert got[y, x] == want, (x, y)
+
+
+# -- the rows in shares (framebuffer/accum.py, pipeline.in_shares) --------------------
+def _accum_case(seed=3, h=96, w=40):
+    rng = np.random.default_rng(seed)
+    src = rng.integers(0, 2**32, (h, w), dtype=np.uint64).astype(np.uint32)
+    acc = rng.integers(-32768, 32768, (h, w, 4)).astype(np.int16)
+    value = 1.7
+    want = acc.astype(np.int64).copy()
+    x0, x1, y0, y1 = 3, w - 5, 2, h - 3
+    for k in range(4):
+        lut = np.floor(np.arange(256) * value + 0.5).astype(np.int64)
+        add = lut[(src[y0:y1 + 1, x0:x1 + 1].astype(np.int64) >> (8 * k)) & 0xFF]
+        s = want[y0:y1 + 1, x0:x1 + 1, k] + add
+        want[y0:y1 + 1, x0:x1 + 1, k] = ((s + 0x8000) & 0xFFFF) - 0x8000
+    ret = np.zeros((h, w), np.uint32)
+    ret_want = np.zeros((h, w), np.int64)
+    for k in range(4):
+        c = np.clip(np.floor(want[y0:y1 + 1, x0:x1 + 1, k] * 0.5 + 0.5), 0, 255).astype(np.int64)
+        ret_want[y0:y1 + 1, x0:x1 + 1] |= c << (8 * k)
+    return acc, src, value, (x0, x1, y0, y1), want, ret, ret_want
+
+
+def _run_accum(acc, src, value, r, ret):
+    from vgx_emulator.framebuffer import accum
+    accum.accumulate(acc, src, accum.AC_ACCUMULATE, value, *r)
+    accum.give_back(acc, ret, 0.5, 0xFFFFFFFF, False, *r)
+
+
+@pytest.mark.skipif(vgx_emulator.config.PARALLEL is False, reason="VGX_PARALLEL=0")
+def test_accumulate_and_return_in_shares_on_the_programs_thread(monkeypatch):
+    """With the raster thread idle, AC_ACCUMULATE and AC_RETURN cut their rows
+    into shares on the walker's threads (pipeline.in_shares, each share a
+    band of rows): every pixel equals the man page's sum, wrapped to 16
+    bits, and the return's clamp(round(acc * value))."""
+    import numba
+    from vgx_emulator import pipeline
+    from vgx_emulator.framebuffer import accum
+    if numba.get_num_threads() < 2:
+        pytest.skip("one numba thread")
+    pipeline.sync()
+    monkeypatch.setattr(accum, "SHARE_ROWS", 8)
+    calls = []
+    real = pipeline.on_threads
+    monkeypatch.setattr(pipeline, "on_threads", lambda *a: (calls.append(a[1]), real(*a)))
+    acc, src, value, r, want, ret, ret_want = _accum_case()
+    _run_accum(acc, src, value, r, ret)
+    assert len(calls) == 2 and min(calls) > 1
+    assert np.array_equal(acc.astype(np.int64), want)
+    assert np.array_equal(ret.astype(np.int64), ret_want)
+
+
+def test_accumulate_and_return_in_shares_on_the_raster_thread(monkeypatch):
+    """Queued on the raster thread, their rows are shared with the thread
+    waiting in sync (pipeline.shared): the same pixels, and both threads
+    took shares."""
+    import numba
+    from vgx_emulator import config, pipeline
+    from vgx_emulator.framebuffer import accum
+    if numba.get_num_threads() < 2 or not config.PARALLEL:
+        pytest.skip("one numba thread or VGX_PARALLEL=0")
+    monkeypatch.setattr(config, "PIPELINE", True)
+    monkeypatch.setattr(accum, "SHARE_ROWS", 4)
+    who = set()
+    rows = accum._accumulate_rows
+
+    def slow_rows(*a):
+        who.add(threading.get_ident())
+        time.sleep(0.002)
+        rows(*a)
+    monkeypatch.setattr(accum, "_accumulate_rows", slow_rows)
+    acc, src, value, r, want, ret, ret_want = _accum_case(seed=4)
+    started = threading.Event()
+
+    def task():
+        started.set()
+        deadline = time.perf_counter() + 5
+        while not pipeline.helper_waiting() and time.perf_counter() < deadline:
+            time.sleep(0.001)
+        _run_accum(acc, src, value, r, ret)
+
+    pipeline.submit(task)
+    assert started.wait(5)                 # the raster thread runs it (not this one)
+    pipeline.sync()
+    assert threading.get_ident() in who and len(who) == 2
+    assert np.array_equal(acc.astype(np.int64), want)
+    assert np.array_equal(ret.astype(np.int64), ret_want)

@@ -81,8 +81,9 @@ SETUP_SHARE = 4096
 JIT_OPTIONS = dict(nogil=True, cache=True, fastmath=False,
                    boundscheck=False)
 
-#: parallel kernels (the triangle walker's bands on a thread pool, the
-#: accumulation buffer's prange over rows); NUMBA_NUM_THREADS (or
+#: work in shares on Python threads (the triangle walker's bands, setup,
+#: lighting, the accumulation buffer's rows: pipeline.in_shares; no kernel
+#: uses numba's parallel lowering); NUMBA_NUM_THREADS (or
 #: numba.set_num_threads) chooses how many threads; VGX_PARALLEL=0 runs
 #: everything on one.
 PARALLEL = os.environ.get("VGX_PARALLEL", "1") != "0"

@@ -1,7 +1,7 @@
 """The project's numba entry points, with the flags of :mod:`config`.
 
 * :func:`njit`: a self-contained kernel (serial), cached on disk by numba
-  against its own file; :func:`pnjit` the same with ``parallel=True``.
+  against its own file.
 * :func:`kernel`: a kernel that inlines helpers of other files, cached on
   disk against the source of every such file (``KERNEL_SOURCE_HASH``) and,
   for a kernel variant, its raster key (``kernel(variant=key)``).
@@ -263,15 +263,6 @@ def inline(fn):
     opts = dict(_opts, cache=False, inline="always")
     return numba.njit(**opts)(fn)
 
-
-def pnjit(fn):
-    """A kernel with a ``prange`` loop (numba threads; the accumulation
-    buffer's rows).  The triangle walker uses Python threads instead
-    (scan.triangles.run_bands)."""
-    return numba.njit(parallel=config.PARALLEL, **_opts)(fn)
-
-
-prange = numba.prange
 
 
 # --------------------------------------------------------------------------

@@ -197,15 +197,26 @@ def split(count, least):
 
 
 def in_shares(run, count, least):
-    """run(lo, hi) over [0, count): at once, or in the shares that
-    :func:`split` gives, on :func:`on_threads` (each share writes its own
-    rows of the outputs)."""
-    n, m = split(count, least)
+    """run(lo, hi) over [0, count): at once, or in shares of at least
+    ``least`` (each share writes its own rows of the outputs).  On the
+    raster thread the shares are offered to a thread waiting in
+    :func:`sync` (:func:`shared`; none waiting: at once, since the other
+    core runs the program); elsewhere they are the ones :func:`split`
+    gives, on :func:`on_threads`."""
+    if on_raster_thread():
+        n = 2 if config.PARALLEL and helper_waiting() else 1
+        m = min(n * config.SHARES_PER_THREAD, count // least) if n > 1 else 1
+    else:
+        n, m = split(count, least)
     if m <= 1:
         run(0, count)
         return
     cuts = [count * k // m for k in range(m + 1)]
-    on_threads(lambda k: run(cuts[k], cuts[k + 1]), m, n)
+    share = lambda k: run(cuts[k], cuts[k + 1])     # noqa: E731
+    if n > 1 and on_raster_thread():
+        shared(share, m)
+    else:
+        on_threads(share, m, n)
 
 
 _pool = None

@@ -22,7 +22,8 @@ import math
 
 import numpy as np
 
-from ..jit import njit, pnjit, prange
+from .. import pipeline
+from ..jit import njit
 
 AC_CLEAR, AC_ACCUMULATE, AC_CLEAR_ACCUMULATE, AC_RETURN, AC_MULT, AC_ADD = range(6)
 
@@ -35,19 +36,39 @@ def _wrap16(v):
     return v
 
 
-@pnjit
+#: a share of an accumulation-buffer operation has at least this many rows
+SHARE_ROWS = 64
+
+
 def accumulate(acc, src, op, value, x0, x1, y0, y1):
-    """AC_CLEAR, AC_ACCUMULATE, AC_CLEAR_ACCUMULATE, AC_MULT, AC_ADD, rows
-    in parallel.  AC_ACCUMULATE adds ``lut[c]`` = round(c * value) of each
-    source byte c, looked up in a 256-entry table made once per call (the
-    same rounding as per pixel, without a multiply and floor per
-    component)."""
+    """AC_CLEAR, AC_ACCUMULATE, AC_CLEAR_ACCUMULATE, AC_MULT, AC_ADD over
+    the rectangle, its rows in shares on the threads free for them
+    (pipeline.in_shares)."""
+    pipeline.in_shares(lambda lo, hi: _accumulate_rows(acc, src, op, value, x0, x1,
+                                                       y0 + lo, y0 + hi - 1),
+                       y1 - y0 + 1, SHARE_ROWS)
+
+
+def give_back(acc, dst, value, mask, cmode, x0, x1, y0, y1):
+    """AC_RETURN into one colour bank under the colour writemask, its rows
+    in shares on the threads free for them (pipeline.in_shares)."""
+    pipeline.in_shares(lambda lo, hi: _give_back_rows(acc, dst, value, mask, cmode, x0, x1,
+                                                      y0 + lo, y0 + hi - 1),
+                       y1 - y0 + 1, SHARE_ROWS)
+
+
+@njit
+def _accumulate_rows(acc, src, op, value, x0, x1, y0, y1):
+    """accumulate() on rows y0..y1.  AC_ACCUMULATE adds ``lut[c]`` =
+    round(c * value) of each source byte c, looked up in a 256-entry table
+    made once per call (the same rounding as per pixel, without a multiply
+    and floor per component)."""
     lut = np.empty(256, np.int64)
     for c in range(256):
         lut[c] = int(math.floor(c * value + 0.5))
     v = int(math.floor(value + 0.5))
     cleared = min(max(v, -32768), 32767)
-    for y in prange(y0, y1 + 1):
+    for y in range(y0, y1 + 1):
         row = acc[y]
         if op == AC_ACCUMULATE or op == AC_CLEAR_ACCUMULATE:
             srow = src[y]
@@ -70,11 +91,10 @@ def accumulate(acc, src, op, value, x0, x1, y0, y1):
                     row[x, k] = _wrap16(np.int64(row[x, k]) + v)
 
 
-@pnjit
-def give_back(acc, dst, value, mask, cmode, x0, x1, y0, y1):
-    """AC_RETURN into one colour bank under the colour writemask, rows in
-    parallel."""
-    for y in prange(y0, y1 + 1):
+@njit
+def _give_back_rows(acc, dst, value, mask, cmode, x0, x1, y0, y1):
+    """give_back() on rows y0..y1."""
+    for y in range(y0, y1 + 1):
         arow = acc[y]
         drow = dst[y]
         for x in range(x0, x1 + 1):
