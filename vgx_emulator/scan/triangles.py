@@ -46,6 +46,14 @@ span (the span processor):
   (``texel_word``, raster/texture.py), in the texture variants only; their
   z is the same plane as untextured ones.
 
+The walker (``_make_triangle_kernel``'s ``walk``) is a loop over bands,
+triangles and rows that calls these pieces: ``edges_at_row``, ``row_span``
+and ``next_row`` (the edges' exact row walk), ``z_start`` and
+``colours_start`` (the planes at a span's first pixel), ``z_hidden`` (the
+z-maxima skip), ``padded_span`` and the span processor ``span``, whose
+texture sampling (``texel``) is compiled into the textured variants only.
+The per-triangle planes come from setup (``triangle_planes``).
+
 Each pixel then goes through the stages of the variant
 (:func:`raster.fragment.stage_function`), a pure function written without
 branches on runtime state; the walker loads and stores the row views
@@ -553,6 +561,90 @@ def texel_word(cmode, gouraud, w0, w1, w2, cols, a, b, c, pv, TC, tex, tlevel, t
     return fragment.colour_word(cmode, r, g, bb, al)
 
 
+@inline
+def edges_at_row(rec, i, y0):
+    """Triangle i's three edges at row y0 (edge k is opposite vertex k):
+    what stays fixed over its rows, (A0, A1, A2, S0, S1, S2, D0, D1, D2,
+    sq0, sq1, sq2, sm0, sm1, sm2), and the row state, (ev0, ev1, ev2, q0,
+    q1, q2, m0, m1, m2): each edge's value at the row's pixel x = 0 and its
+    exact quotient DDA (edge_dda), for row_span and next_row."""
+    A0, B0, C0 = rec[i, T_EDGES], rec[i, T_EDGES + 1], rec[i, T_EDGES + 2]
+    A1, B1, C1 = rec[i, T_EDGES + 3], rec[i, T_EDGES + 4], rec[i, T_EDGES + 5]
+    A2, B2, C2 = rec[i, T_EDGES + 6], rec[i, T_EDGES + 7], rec[i, T_EDGES + 8]
+    py = y0 << SHIFT
+    ev0 = B0 * py + C0
+    ev1 = B1 * py + C1
+    ev2 = B2 * py + C2
+    S0 = B0 << SHIFT
+    S1 = B1 << SHIFT
+    S2 = B2 << SHIFT
+    q0, m0, D0, sq0, sm0 = edge_dda(A0, ev0, S0)
+    q1, m1, D1, sq1, sm1 = edge_dda(A1, ev1, S1)
+    q2, m2, D2, sq2, sm2 = edge_dda(A2, ev2, S2)
+    return ((A0, A1, A2, S0, S1, S2, D0, D1, D2, sq0, sq1, sq2, sm0, sm1, sm2),
+            (ev0, ev1, ev2, q0, q1, q2, m0, m1, m2))
+
+
+@inline
+def row_span(edge, row, bx0, bx1):
+    """(xl, xr, e0, e1, e2): the covered pixels of the row within the box
+    columns [bx0, bx1] (span_bounds; xl > xr: none) and the three exact
+    edge values at its first pixel."""
+    A0, A1, A2 = edge[0], edge[1], edge[2]
+    ev0, ev1, ev2, q0, q1, q2 = row[0], row[1], row[2], row[3], row[4], row[5]
+    xl, xr = span_bounds(A0, q0, A1, q1, A2, q2, bx0, bx1)
+    px = xl << SHIFT
+    return xl, xr, A0 * px + ev0, A1 * px + ev1, A2 * px + ev2
+
+
+@inline
+def next_row(edge, row):
+    """The row state of edges_at_row one row up: the values step by S, the
+    quotients by edge_step (two additions and a compare each)."""
+    q0, m0 = edge_step(row[3], row[6], edge[6], edge[9], edge[12])
+    q1, m1 = edge_step(row[4], row[7], edge[7], edge[10], edge[13])
+    q2, m2 = edge_step(row[5], row[8], edge[8], edge[11], edge[14])
+    return (row[0] + edge[3], row[1] + edge[4], row[2] + edge[5], q0, q1, q2, m0, m1, m2)
+
+
+@inline
+def z_start(zplane, Z, a, b, c, ox, oy, wb, wc):
+    """The span's first z in ZFRAC bits, half a unit up (floor rounds):
+    from the triangle's z plane (zref at the box corner, dz a pixel, dzy a
+    row; the span starts ox, oy from the corner) or, for a sliver whose
+    plane does not fit (plane_fixed), from the exact weights wb, wc."""
+    zref, dz, dzy, zok = zplane
+    if zok:
+        return zref + dzy * oy + dz * ox + (1 << (ZFRAC - 1))
+    return exact_start(Z[a], Z[b] - Z[a], Z[c] - Z[a], wb, wc, ZONE) + (1 << (ZFRAC - 1))
+
+
+@inline
+def colour_planes(rec, i):
+    """Triangle i's r, g, b, a planes (corner, per pixel, per row; CFRAC
+    bits) and whether every one fits (else span starts are exact)."""
+    return ((rec[i, T_COLOUR], rec[i, T_COLOUR + 1], rec[i, T_COLOUR + 2]),
+            (rec[i, T_COLOUR + 3], rec[i, T_COLOUR + 4], rec[i, T_COLOUR + 5]),
+            (rec[i, T_COLOUR + 6], rec[i, T_COLOUR + 7], rec[i, T_COLOUR + 8]),
+            (rec[i, T_COLOUR + 9], rec[i, T_COLOUR + 10], rec[i, T_COLOUR + 11]),
+            rec[i, T_COK] != 0)
+
+
+@inline
+def colours_start(planes, ox, oy, early, cols, a, b, c, wb, wc):
+    """The four int32 colour DDAs at the span loop's first pixel
+    (colour_dda of each plane)."""
+    pr, pg, pb, pa, ok = planes
+    return (colour_dda(pr[0], pr[1], pr[2], ox, oy, early, ok, cols[a, 0], cols[b, 0],
+                       cols[c, 0], wb, wc),
+            colour_dda(pg[0], pg[1], pg[2], ox, oy, early, ok, cols[a, 1], cols[b, 1],
+                       cols[c, 1], wb, wc),
+            colour_dda(pb[0], pb[1], pb[2], ox, oy, early, ok, cols[a, 2], cols[b, 2],
+                       cols[c, 2], wb, wc),
+            colour_dda(pa[0], pa[1], pa[2], ox, oy, early, ok, cols[a, 3], cols[b, 3],
+                       cols[c, 3], wb, wc))
+
+
 def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
                           stencil, blend, logic, atest, pattern, cmask, texture, dual):
     key = (ztest, zwrite, color, gouraud, cmode, twoside, stencil, blend, logic, atest,
@@ -560,10 +652,76 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
     stages = fragment.stage_function(ztest, zwrite, stencil, blend, logic, atest, cmask, cmode)
     bterms = key_terms(blend)          # the blend factors of a folded pair
     band_rows = config.BAND_ROWS
-    zhalf = 1 << (ZFRAC - 1)
     interp = gouraud and color and not texture
     cmax = 0xFFF if cmode else 255
     pad = not texture       # texture sampling needs the pixel inside the triangle
+
+    @inline
+    def texel(k, textured):
+        """The colour word of the span's k-th pixel of a textured triangle
+        (texel_word), from the exact edge values ``e`` at the span's first
+        pixel (no padding: x = xl + k)."""
+        e, edge, off, ia, cols, a, b, c, pv, TC, tex, tlevel, tbil = textured
+        sk = k << SHIFT
+        return texel_word(cmode, gouraud, (e[0] + edge[0] * sk + off[0]) * ia,
+                          (e[1] + edge[1] * sk + off[1]) * ia,
+                          (e[2] + edge[2] * sk + off[2]) * ia,
+                          cols, a, b, c, pv, TC, tex, tlevel, tbil)
+
+    @inline
+    def span(banks, y, lo, nv, kin0, kin1, zf, dz, zlo32, zhi32, word, dda, steps, prow,
+             textured, bt, prm):
+        """The span processor: pixels lo .. lo + nv - 1 of row y through
+        the variant's stages (kin0 .. kin1 inside the span, the rest
+        padding that stores what it holds), loading and storing the row
+        views of the banks the variant uses.  ``dda``/``steps``: the int32
+        colour DDAs and their steps; ``textured``: what texel() reads of
+        the triangle and span (0 in the variants without texture).
+        Returns whether a z value changed."""
+        cb0, cb1, zb, sb = banks
+        cr0 = cb0[y] if color else cb0[0]
+        cr1 = cb1[y] if (color and dual) else cb1[0]
+        zr = zb[y] if ztest else zb[0]
+        sr = sb[y] if stencil else sb[0]
+        r32, g32, b32, a32 = dda
+        dr32, dg32, db32, da32 = steps
+        zchg = np.int32(0)
+        for k in range(nv):
+            # truncated to int32 before the clamp (32-bit vector lanes):
+            # exact inside the triangle, whose z lies between its
+            # vertices' (|Z| < viewport.Z_LIMIT)
+            zq = min(max(np.int32(zf >> ZFRAC), zlo32), zhi32)
+            zf += dz
+            w = word
+            if interp:
+                w = gouraud_word(cmode, cmax, r32, g32, b32, a32)
+                r32 = add32(r32, dr32)
+                if not cmode:
+                    g32 = add32(g32, dg32)
+                    b32 = add32(b32, db32)
+                    a32 = add32(a32, da32)
+            if texture:
+                w = texel(k, textured)
+            kk = np.int32(k)        # (an int32 test: 8 lanes)
+            patbit = np.int32((kk >= kin0) & (kk <= kin1)) if pad else np.int32(1)
+            u = np.uint64(lo + k)   # unsigned index: no wraparound test
+            if pattern:
+                patbit &= np.int32(prow[u])     # (pattern_rows: aligned in x)
+            zold = np.int32(zr[u]) if ztest else np.int32(0)
+            sold = np.int32(sr[u]) if stencil else np.int32(0)
+            c0 = np.int64(cr0[u]) if color else np.int64(0)
+            c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
+            ok, zn, sn, n0, n1 = stages(patbit, zq, zold, sold, c0, c1, w, bt, prm)
+            if stencil == 2:        # (1: the stencil is only tested)
+                sr[u] = sn
+            if zwrite:
+                zchg |= np.int32(zn != zold)
+                zr[u] = zn
+            if color:
+                cr0[u] = n0
+                if dual:
+                    cr1[u] = n1
+        return zchg
 
     @kernel(variant=key)
     def walk(bands, setup, X, Y, Z, C, CB, prov, planes, ip, TC, tex, zmax):
@@ -572,165 +730,65 @@ def _make_triangle_kernel(ztest, zwrite, color, gouraud, cmode, twoside,
         come from setup_triangles."""
         rec, inv_area, rows = setup
         cb0, cb1, zb, sb, pat = planes
+        banks = (cb0, cb1, zb, sb)
         prm = fragment.params(ip)
         bt = fragment.blend_terms(blend, bterms, prm)
-        npat = prm[fragment.P_PATSIZE]
-        orgy = prm[fragment.P_ORGY]
-        zlo = prm[fragment.P_ZLO]
-        zhi = prm[fragment.P_ZHI]
-        zlo32 = np.int32(zlo)
-        zhi32 = np.int32(zhi)
-        sy1 = prm[fragment.P_SY1]
+        zlo, zhi = prm[fragment.P_ZLO], prm[fragment.P_ZHI]
+        zlo32, zhi32 = np.int32(zlo), np.int32(zhi)
         skip = ztest and prm[fragment.P_ZMAX] != 0
         padspan = prm[fragment.P_PADSPAN] if pad else 0
-        # 1-pixel views standing for the banks the variant does not use
-        cr0_dummy = cb0[0]
-        cr1_dummy = cb1[0]
-        zr_dummy = zb[0]
-        sr_dummy = sb[0]
         # the row length the padded spans stay inside (0: no padding)
         wid = zb.shape[1] if ztest else (cb0.shape[1] if color else
                                          (sb.shape[1] if stencil else 0))
         for ylo in bands:
-            yhi = min(ylo + band_rows - 1, sy1)
+            yhi = min(ylo + band_rows - 1, prm[fragment.P_SY1])
             for i in range(rows.shape[0]):
-                # every triangle, its rows from their own compact array:
-                # rec's 304-byte rows would each take a cache line (a
-                # 40k-triangle batch: 12 MB a band; the walker of its small
-                # triangles 6.5 -> 3.7 ms)
-                y0 = max(rows[i, 0], ylo)
-                y1 = min(rows[i, 1], yhi)
+                # (each triangle's rows from their own compact array: rec's
+                # 304-byte rows would each take a cache line; the walker of
+                # 40k small triangles 6.5 -> 3.7 ms)
+                y0, y1 = max(rows[i, 0], ylo), min(rows[i, 1], yhi)
                 if y0 > y1:
                     continue
-                a = rec[i, T_VERTS]
-                b = rec[i, T_VERTS + 1]
-                c = rec[i, T_VERTS + 2]
+                a, b, c = rec[i, T_VERTS], rec[i, T_VERTS + 1], rec[i, T_VERTS + 2]
                 ia = inv_area[i]
                 cols = CB if (twoside and rec[i, T_BACK] != 0) else C
-                A0, B0, C0 = rec[i, T_EDGES], rec[i, T_EDGES + 1], rec[i, T_EDGES + 2]
-                A1, B1, C1 = rec[i, T_EDGES + 3], rec[i, T_EDGES + 4], rec[i, T_EDGES + 5]
-                A2, B2, C2 = rec[i, T_EDGES + 6], rec[i, T_EDGES + 7], rec[i, T_EDGES + 8]
-                o0, o1, o2 = rec[i, T_OFFSET], rec[i, T_OFFSET + 1], rec[i, T_OFFSET + 2]
-                xb = rec[i, T_BOX]
-                yb = rec[i, T_BOX + 2]
-                zref, dz, dzy, zok = rec[i, T_Z], rec[i, T_Z + 1], rec[i, T_Z + 2], rec[i, T_ZOK] != 0
-                rc, dr, dry = rec[i, T_COLOUR], rec[i, T_COLOUR + 1], rec[i, T_COLOUR + 2]
-                gc, dg, dgy = rec[i, T_COLOUR + 3], rec[i, T_COLOUR + 4], rec[i, T_COLOUR + 5]
-                bc, db, dby = rec[i, T_COLOUR + 6], rec[i, T_COLOUR + 7], rec[i, T_COLOUR + 8]
-                ac, da, day = rec[i, T_COLOUR + 9], rec[i, T_COLOUR + 10], rec[i, T_COLOUR + 11]
-                cok = rec[i, T_COK] != 0
+                off = (rec[i, T_OFFSET], rec[i, T_OFFSET + 1], rec[i, T_OFFSET + 2])
+                bx0, bx1, by0 = rec[i, T_BOX], rec[i, T_BOX + 1], rec[i, T_BOX + 2]
+                zplane = (rec[i, T_Z], rec[i, T_Z + 1], rec[i, T_Z + 2], rec[i, T_ZOK] != 0)
+                dz = zplane[1]
+                cplanes = colour_planes(rec, i)
+                # per-pixel colour steps in int32: two covered pixels of a
+                # row differ by at most 0xFFF, so a step of a longer span fits
+                steps = (np.int32(cplanes[0][1]), np.int32(cplanes[1][1]),
+                         np.int32(cplanes[2][1]), np.int32(cplanes[3][1]))
                 word = rec[i, T_WORD]
-                # per-pixel colour steps in int32: two covered pixels of a row
-                # differ by at most 0xFFF, so a step of a longer span fits
-                dr32 = np.int32(dr)
-                dg32 = np.int32(dg)
-                db32 = np.int32(db)
-                da32 = np.int32(da)
                 tlevel = tex[2][i] >> 1 if texture else 0
                 tbil = (tex[2][i] & 1) == 1 if texture else False
-                # the edges' row values and their exact quotients, stepped per row
-                py = y0 << SHIFT
-                ev0 = B0 * py + C0
-                ev1 = B1 * py + C1
-                ev2 = B2 * py + C2
-                S0 = B0 << SHIFT
-                S1 = B1 << SHIFT
-                S2 = B2 << SHIFT
-                q0, m0, D0, sq0, sm0 = edge_dda(A0, ev0, S0)
-                q1, m1, D1, sq1, sm1 = edge_dda(A1, ev1, S1)
-                q2, m2, D2, sq2, sm2 = edge_dda(A2, ev2, S2)
+                edge, row = edges_at_row(rec, i, y0)
                 for y in range(y0, y1 + 1):
-                    xl, xr = span_bounds(A0, q0, A1, q1, A2, q2, rec[i, T_BOX], rec[i, T_BOX + 1])
-                    px = xl << SHIFT
-                    # exact edge values at the span's first pixel
-                    e0 = A0 * px + ev0
-                    e1 = A1 * px + ev1
-                    e2 = A2 * px + ev2
-                    ev0 += S0
-                    ev1 += S1
-                    ev2 += S2
-                    q0, m0 = edge_step(q0, m0, D0, sq0, sm0)
-                    q1, m1 = edge_step(q1, m1, D1, sq1, sm1)
-                    q2, m2 = edge_step(q2, m2, D2, sq2, sm2)
+                    xl, xr, e0, e1, e2 = row_span(edge, row, bx0, bx1)
+                    row = next_row(edge, row)
                     if xl > xr:
                         continue
-                    # span start values: the planes at (xl, y), or for a
-                    # sliver outside their bounds the exact weights
-                    ox = xl - xb
-                    oy = y - yb
-                    wb = (e1 + o1) * ia
-                    wc = (e2 + o2) * ia
-                    if zok:
-                        zf = zref + dzy * oy + dz * ox + zhalf
-                    else:
-                        zf = exact_start(Z[a], Z[b] - Z[a], Z[c] - Z[a], wb, wc, ZONE) + zhalf
-                    if skip and zok and z_hidden(zf, dz, xl, xr, zlo, zhi, zmax[y]):
+                    # the span's start values: the planes at (xl, y), or for
+                    # a sliver outside their bounds the exact weights
+                    ox, oy = xl - bx0, y - by0
+                    wb = (e1 + off[1]) * ia
+                    wc = (e2 + off[2]) * ia
+                    zf = z_start(zplane, Z, a, b, c, ox, oy, wb, wc)
+                    if skip and zplane[3] and z_hidden(zf, dz, xl, xr, zlo, zhi, zmax[y]):
                         continue
                     lo, nv = padded_span(xl, xr, padspan, wid)
                     early = xl - lo
-                    kin0 = np.int32(early)
-                    kin1 = np.int32(xr - lo)
-                    zf -= dz * early
-                    # the colour DDAs (int32)
-                    r32 = g32 = b32 = a32 = np.int32(0)
-                    if interp:
-                        r32 = colour_dda(rc, dr, dry, ox, oy, early, cok, cols[a, 0],
-                                         cols[b, 0], cols[c, 0], wb, wc)
-                        g32 = colour_dda(gc, dg, dgy, ox, oy, early, cok, cols[a, 1],
-                                         cols[b, 1], cols[c, 1], wb, wc)
-                        b32 = colour_dda(bc, db, dby, ox, oy, early, cok, cols[a, 2],
-                                         cols[b, 2], cols[c, 2], wb, wc)
-                        a32 = colour_dda(ac, da, day, ox, oy, early, cok, cols[a, 3],
-                                         cols[b, 3], cols[c, 3], wb, wc)
-                    # row views of the banks the variant uses
-                    cr0 = cb0[y] if color else cr0_dummy
-                    cr1 = cb1[y] if (color and dual) else cr1_dummy
-                    zr = zb[y] if ztest else zr_dummy
-                    sr = sb[y] if stencil else sr_dummy
-                    prow = pat[(y + orgy) % npat] if pattern else pat[0]
-                    # the span loop (the span processor)
-                    zchg = np.int32(0)
-                    for k in range(nv):
-                        x = lo + k
-                        # truncated to int32 before the clamp (32-bit vector
-                        # lanes): exact inside the triangle, whose z lies
-                        # between its vertices' (|Z| < viewport.Z_LIMIT)
-                        zq = min(max(np.int32(zf >> ZFRAC), zlo32), zhi32)
-                        zf += dz
-                        w = word
-                        if interp:
-                            w = gouraud_word(cmode, cmax, r32, g32, b32, a32)
-                            r32 = add32(r32, dr32)
-                            if not cmode:
-                                g32 = add32(g32, dg32)
-                                b32 = add32(b32, db32)
-                                a32 = add32(a32, da32)
-                        if texture:
-                            sk = k << SHIFT     # (no padding: x = xl + k)
-                            w = texel_word(cmode, gouraud, (e0 + A0 * sk + o0) * ia,
-                                           (e1 + A1 * sk + o1) * ia, (e2 + A2 * sk + o2) * ia,
-                                           cols, a, b, c, prov[i], TC, tex, tlevel, tbil)
-                        kk = np.int32(k)        # (an int32 test: 8 lanes)
-                        patbit = np.int32((kk >= kin0) & (kk <= kin1)) if pad else np.int32(1)
-                        u = np.uint64(x)      # unsigned index: no wraparound test
-                        if pattern:
-                            patbit &= np.int32(prow[u])     # (pattern_rows: aligned in x)
-                        zold = np.int32(zr[u]) if ztest else np.int32(0)
-                        sold = np.int32(sr[u]) if stencil else np.int32(0)
-                        c0 = np.int64(cr0[u]) if color else np.int64(0)
-                        c1 = np.int64(cr1[u]) if (color and dual) else np.int64(0)
-                        ok, zn, sn, n0, n1 = stages(patbit, zq, zold, sold, c0, c1,
-                                                    w, bt, prm)
-                        if stencil == 2:        # (1: the stencil is only tested)
-                            sr[u] = sn
-                        if zwrite:
-                            zchg |= np.int32(zn != zold)
-                            zr[u] = zn
-                        if color:
-                            cr0[u] = n0
-                            if dual:
-                                cr1[u] = n1
-                    if zwrite and zchg != 0:
+                    dda = colours_start(cplanes, ox, oy, early, cols, a, b, c, wb, wc) \
+                        if interp else (np.int32(0), np.int32(0), np.int32(0), np.int32(0))
+                    prow = pat[(y + prm[fragment.P_ORGY]) % prm[fragment.P_PATSIZE]] \
+                        if pattern else pat[0]
+                    textured = ((e0, e1, e2), edge, off, ia, cols, a, b, c, prov[i], TC, tex,
+                                tlevel, tbil) if texture else 0
+                    if span(banks, y, lo, nv, np.int32(early), np.int32(xr - lo),
+                            zf - dz * early, dz, zlo32, zhi32, word, dda, steps, prow,
+                            textured, bt, prm) != 0 and zwrite:
                         ip[fragment.P_ZCHANGED] = 1     # (any thread: the same value)
 
     return walk
