@@ -60,23 +60,35 @@ def give_back(acc, dst, value, mask, cmode, x0, x1, y0, y1):
 @njit
 def _accumulate_rows(acc, src, op, value, x0, x1, y0, y1):
     """accumulate() on rows y0..y1.  AC_ACCUMULATE adds ``lut[c]`` =
-    round(c * value) of each source byte c, looked up in a 256-entry table
-    made once per call (the same rounding as per pixel, without a multiply
-    and floor per component)."""
-    lut = np.empty(256, np.int64)
+    round(c * value) of each source byte c, looked up in a 256-entry int32
+    table made once per call (the same rounding as per pixel, without a
+    multiply and floor per component; |lut| <= 255 * 256); the int16 store
+    of the int32 sum wraps as _wrap16 does."""
+    lut = np.empty(256, np.int32)
     for c in range(256):
-        lut[c] = int(math.floor(c * value + 0.5))
+        lut[c] = np.int32(math.floor(c * value + 0.5))
     v = int(math.floor(value + 0.5))
     cleared = min(max(v, -32768), 32767)
     for y in range(y0, y1 + 1):
         row = acc[y]
-        if op == AC_ACCUMULATE or op == AC_CLEAR_ACCUMULATE:
+        if op == AC_ACCUMULATE:
             srow = src[y]
             for x in range(x0, x1 + 1):
-                w = np.int64(srow[x])
-                for k in range(4):
-                    a = 0 if op == AC_CLEAR_ACCUMULATE else np.int64(row[x, k])
-                    row[x, k] = _wrap16(a + lut[(w >> (8 * k)) & 0xFF])
+                u = np.uint64(x)
+                w = srow[u]
+                row[u, 0] = np.int16(np.int32(row[u, 0]) + lut[w & 0xFF])
+                row[u, 1] = np.int16(np.int32(row[u, 1]) + lut[(w >> 8) & 0xFF])
+                row[u, 2] = np.int16(np.int32(row[u, 2]) + lut[(w >> 16) & 0xFF])
+                row[u, 3] = np.int16(np.int32(row[u, 3]) + lut[(w >> 24) & 0xFF])
+        elif op == AC_CLEAR_ACCUMULATE:
+            srow = src[y]
+            for x in range(x0, x1 + 1):
+                u = np.uint64(x)
+                w = srow[u]
+                row[u, 0] = np.int16(lut[w & 0xFF])
+                row[u, 1] = np.int16(lut[(w >> 8) & 0xFF])
+                row[u, 2] = np.int16(lut[(w >> 16) & 0xFF])
+                row[u, 3] = np.int16(lut[(w >> 24) & 0xFF])
         elif op == AC_CLEAR:
             for x in range(x0, x1 + 1):
                 for k in range(4):
