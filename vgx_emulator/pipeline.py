@@ -203,7 +203,8 @@ def in_shares(run, count, least):
     :func:`sync` (:func:`shared`; none waiting: at once, since the other
     core runs the program); elsewhere they are the ones :func:`split`
     gives, on :func:`on_threads`."""
-    if on_raster_thread():
+    raster = on_raster_thread()
+    if raster:
         n = 2 if config.PARALLEL and helper_waiting() else 1
         m = min(n * config.SHARES_PER_THREAD, count // least) if n > 1 else 1
     else:
@@ -213,7 +214,7 @@ def in_shares(run, count, least):
         return
     cuts = [count * k // m for k in range(m + 1)]
     share = lambda k: run(cuts[k], cuts[k + 1])     # noqa: E731
-    if n > 1 and on_raster_thread():
+    if raster:
         shared(share, m)
     else:
         on_threads(share, m, n)
