@@ -9,6 +9,7 @@ import signal
 import pytest
 
 distributed = pytest.importorskip("distributed")
+from distributed.diagnostics.plugin import WorkerPlugin  # noqa: E402
 
 from study import __main__ as cli  # noqa: E402
 from study import report  # noqa: E402
@@ -60,26 +61,45 @@ def test_the_parallel_sweep_equals_the_serial_one(serial, client, tmp_path):
     assert timed["slots"] == [len(DaskPool(client=client).timing_slots(1))]
 
 
-def test_a_worker_killed_during_the_sweep_loses_nothing(serial, client, tmp_path):
-    """At the first record, the worker process running a task is killed
-    (SIGKILL); Dask runs its tasks again and the folder ends as the serial
-    run's, with every configuration."""
-    whole, root = serial
-    killed = []
+class KillAtFirstTask(WorkerPlugin):
+    """Kills its worker's process (SIGKILL) when a task starts executing there,
+    once in the cluster: the first worker to create ``mark`` is the one."""
 
-    def kill(scene, key, rec):
-        if killed:
+    def __init__(self, mark):
+        self.mark = str(mark)
+
+    def transition(self, key, start, finish, **kwargs):
+        if finish != "executing":
             return
-        busy = [w for w, keys in client.processing().items() if keys]
-        assert busy, "no task in progress to kill"
-        pid = client.run(os.getpid, workers=busy[:1])[busy[0]]
-        os.kill(pid, signal.SIGKILL)
-        killed.append(pid)
-    out = tmp_path / "killed"
-    _run(root, out, client, on_record=kill)
-    assert killed
-    same_results(out, whole)
+        try:
+            fd = os.open(self.mark, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+        except FileExistsError:
+            return
+        os.write(fd, f"{os.getpid()} {key}".encode())
+        os.close(fd)
+        os.kill(os.getpid(), signal.SIGKILL)
+
+
+def test_a_worker_killed_during_the_sweep_loses_nothing(serial, client, tmp_path):
+    """The worker process that starts the sweep's first task is killed
+    (SIGKILL) in the middle of it; Dask runs its tasks again and the folder
+    ends as the serial run's, with every configuration.  (The kill comes from
+    a worker plugin at the task's start, so there is always a task to lose:
+    killing from the client at the first record raced the tiny sweep's end.)"""
+    whole, root = serial
+    mark = tmp_path / "killed"
+    register = getattr(client, "register_plugin", None) or client.register_worker_plugin
+    before = set(client.run(os.getpid).values())
+    register(KillAtFirstTask(mark), name="kill-at-first-task")
+    try:
+        _run(root, tmp_path / "out", client)
+    finally:
+        client.unregister_worker_plugin("kill-at-first-task")
+    pid, key = mark.read_text().split(" ", 1)
+    assert int(pid) in before                          # a worker of the sweep, mid-task
+    same_results(tmp_path / "out", whole)
     client.wait_for_workers(2, timeout=60)             # the nanny brought it back
+    assert int(pid) not in set(client.run(os.getpid).values())
 
 
 def test_timing_slots_keep_one_task_per_core(client):
