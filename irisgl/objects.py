@@ -148,11 +148,22 @@ def getopenobj():
 
 @glcall
 def genobj():
-    """genobj(3G): an object number not in use."""
-    o = max(machine.objects, default=0) + 1
-    while o in machine.objects:
-        o += 1
-    return o
+    """genobj(3G): a unique object number, never handed out before nor in use.
+    So numbers taken by genobj calls in a row, before any makeobj, differ
+    (``a = genobj(); b = genobj()``)."""
+    return _generate("obj", machine.objects)
+
+
+def _generate(kind, in_use):
+    """The next number after the last one genobj (``kind`` "obj") or gentag
+    ("tag") handed out that is not in ``in_use``, 1..2**31-1 (31-bit
+    numbers, genobj(3G), gentag(3G)); [S] past 2**31-1 it starts again at 1."""
+    n = machine.generated[kind]
+    while True:
+        n = n + 1 if n < 0x7FFFFFFF else 1
+        if n not in in_use:
+            machine.generated[kind] = n
+            return n
 
 
 @glcall
@@ -237,12 +248,32 @@ def callobj(obj):
 
 @glcall
 def maketag(t):
-    """maketag(3G): a tag at the edit point of the open object."""
+    """maketag(3G): a tag at the edit point of the open object (moved there if it has it).
+    A tag number the object already has moves here: "if you later define a
+    tag with the same value, the first tag is lost" (gentag(3G))."""
     if machine.recording is None:
         fail("maketag", "no object is open", "makeobj or editobj first")
     ob = machine.objects[machine.recording]
-    ob.items.insert(ob.cursor, ("tag", integer("maketag", t, "tag")))
+    t = integer("maketag", t, "tag")
+    _lose_tag(ob, t)
+    ob.items.insert(ob.cursor, ("tag", t))
     ob.cursor += 1
+
+
+def _lose_tag(ob, t):
+    """Removes tag t from ob if it is there."""
+    for i, it in enumerate(ob.items):
+        if it[0] == "tag" and it[1] == t:
+            _drop_tag(ob, i)
+            return
+
+
+def _drop_tag(ob, i):
+    """Removes the tag at ob.items[i] (the routines stay), the edit point
+    kept on the same routine."""
+    del ob.items[i]
+    if i < ob.cursor:
+        ob.cursor -= 1
 
 
 def _tag_index(call, t):
@@ -262,13 +293,9 @@ def _tag_index(call, t):
 
 @glcall
 def gentag():
-    """gentag(3G): a tag number not used in the open object."""
-    ob = machine.objects.get(machine.recording) if machine.recording else None
-    used = {it[1] for it in ob.items if it[0] == "tag"} if ob else set()
-    t = 1
-    while t in used:
-        t += 1
-    return t
+    """gentag(3G): a unique tag number, never handed out before nor in the open object."""
+    ob = machine.objects.get(machine.recording) if machine.recording is not None else None
+    return _generate("tag", {it[1] for it in ob.items if it[0] == "tag"} if ob else ())
 
 
 @glcall
@@ -315,13 +342,16 @@ def objdelete(t1, t2):
 def newtag(newtg, oldtg, offst):
     """newtag(3G): tag ``newtg`` placed ``offst`` routines beyond tag
     ``oldtg`` in the object open for editing (immediate).  [S] the offset
-    counts recorded calls, not tags; beyond the end of the object is an error."""
+    counts recorded calls, not tags; beyond the end of the object is an error.
+    A ``newtg`` the object already has moves to the new place, as maketag's
+    does (gentag(3G): "the first tag is lost"); ``newtg`` equal to ``oldtg``,
+    STARTTAG or ENDTAG is an error."""
     n = integer("newtag", newtg, "tag")
     off = integer("newtag", offst, "offset")
     ob, i = _tag_index("newtag", oldtg)
-    if n in (K.STARTTAG, K.ENDTAG) or any(it[0] == "tag" and it[1] == n for it in ob.items):
-        fail("newtag", f"tag {n} is already in object {machine.recording}",
-             "a new tag number (gentag)")
+    if n in (K.STARTTAG, K.ENDTAG) or n == integer("newtag", oldtg, "tag"):
+        fail("newtag", f"tag {n} is already in object {machine.recording} as the reference "
+             "tag or one of its ends", "a new tag number (gentag)")
     j = i + 1
     seen = 0
     while seen < off and j < len(ob.items):
@@ -334,6 +364,10 @@ def newtag(newtg, oldtg, offst):
     ob.items.insert(j, ("tag", n))
     if j <= ob.cursor:
         ob.cursor += 1
+    for k, it in enumerate(ob.items):
+        if it[0] == "tag" and it[1] == n and k != j:
+            _drop_tag(ob, k)
+            break
 
 
 @glcall
@@ -342,10 +376,7 @@ def deltag(t):
     routines stay); STARTTAG and ENDTAG cannot be deleted."""
     if integer("deltag", t, "tag") in (K.STARTTAG, K.ENDTAG):
         fail("deltag", "STARTTAG and ENDTAG cannot be deleted", "a tag made by maketag/newtag")
-    ob, i = _tag_index("deltag", t)
-    del ob.items[i]
-    if i < ob.cursor:
-        ob.cursor -= 1
+    _drop_tag(*_tag_index("deltag", t))
 
 
 def _bbox(call, xmin, ymin, x1, y1, x2, y2):

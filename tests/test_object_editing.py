@@ -12,8 +12,8 @@ pixels."""
 import pytest
 
 from irisgl import (ENDTAG, STARTTAG, GLError, callfunc, callobj, clear, closeobj, cpack,
-                    editobj, gentag, istag, lrectread, makeobj, maketag, objdelete, objinsert,
-                    objreplace)
+                    delobj, editobj, genobj, gentag, isobj, istag, lrectread, makeobj, maketag,
+                    newtag, objdelete, objinsert, objreplace)
 from banks import box
 
 RED, GREEN, BLUE = 0xFF0000FF, 0xFF00FF00, 0xFFFF0000
@@ -134,6 +134,61 @@ def test_gentag_gives_unused_tags_and_istag_finds_them(log):
     editobj(1)
     assert istag(t1) and gentag() not in (t1, t2)
     closeobj()
+
+
+def test_genobj_numbers_taken_in_a_row_are_unique(log):
+    """genobj(3G) "generates unique 31-bit integer numbers" and "will not
+    generate an object name that is currently in use": numbers taken one
+    after another before any makeobj differ (a program that takes all its
+    names first, then fills them), none is a defined object, a deleted
+    object's number is not handed out again, and each object keeps what was
+    recorded into it."""
+    build(log, 3, ["Z"])
+    names = [genobj() for _ in range(7)]
+    assert len(set(names)) == 7 and 3 not in names
+    assert all(0 < n < 2 ** 31 for n in names)
+    for n, letter in zip(names, "ABCDEFG"):
+        build(log, n, [letter])
+    assert "".join(run(log, n) for n in names) == "ABCDEFG"
+    delobj(names[0])
+    assert not isobj(names[0])
+    assert genobj() not in names + [3]
+
+
+def test_gentag_numbers_taken_in_a_row_are_unique(log):
+    """gentag(3G): tags taken in a row before any maketag differ, also with
+    no object open; none is a tag the open object has."""
+    tags = [gentag() for _ in range(3)]
+    makeobj(1)
+    tags += [gentag() for _ in range(3)]
+    maketag(tags[-1] + 1)
+    assert gentag() != tags[-1] + 1
+    closeobj()
+    assert len(set(tags)) == 6
+
+
+def test_a_tag_defined_again_moves_there(log):
+    """gentag(3G): "if you later define a tag with the same value, the first
+    tag is lost": maketag and newtag of a number the object has take it to
+    the new place, and the editing calls find it there; the routines stay."""
+    makeobj(1)
+    maketag(10)
+    step(log, "A")
+    maketag(10)                           # the first tag 10 is lost
+    step(log, "B")
+    step(log, "C")
+    closeobj()
+    editobj(1)
+    objreplace(10)
+    step(log, "X")
+    closeobj()
+    assert run(log, 1) == "AXC"
+    editobj(1)
+    newtag(10, STARTTAG, 2)               # after A and X now
+    objinsert(10)
+    step(log, "Y")
+    closeobj()
+    assert run(log, 1) == "AXYC"
 
 
 def test_editing_calls_are_not_recorded(log):

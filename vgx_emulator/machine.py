@@ -166,6 +166,7 @@ class VGX:
         self.pref = {}
         self.objects = {}              # display lists: Object -> irisgl.objects._Object
         self.recording = None          # the Object being recorded, or None
+        self.generated = {"obj": 0, "tag": 0}   # genobj/gentag: the last number handed out
         self.textures = {}             # texdef2d: index -> vgx_emulator.texture.Texture
         self.environments = {}         # tevdef: index -> Environment
         self.curve_state = None        # defbasis/curvebasis/patch* settings (irisgl.curves)
