@@ -203,14 +203,19 @@ def getdev(n, devs, vals=None):
 
 @glcall(immediate=True)
 def setvaluator(dev, init, vmin, vmax):
-    """setvaluator(3G): a valuator's value and range (vmin <= init <= vmax);
-    for MOUSEX/MOUSEY the cursor position.  Nothing is queued."""
+    """setvaluator(3G): a valuator's value and range; what it reports stays in the range.
+    The range is "the minimum and maximum values the device can assume";
+    for MOUSEX/MOUSEY the value is the cursor position.  Nothing is queued.
+    From then on the values the device reports are held in [vmin, vmax] (a
+    mouse dragged out of the range reads its edge); [S] an init outside the
+    range is held there too, and vmin > vmax is an error (the man page
+    lists no error)."""
     d = _valuator("setvaluator", dev)
     i, lo, hi = (_short("setvaluator", v, w)
                  for v, w in ((init, "init"), (vmin, "vmin"), (vmax, "vmax")))
-    if not lo <= i <= hi:
-        fail("setvaluator", f"init {i} is outside [{lo}, {hi}]", "vmin <= init <= vmax")
-    machine.events.set_valuator(d, i, lo, hi)
+    if lo > hi:
+        fail("setvaluator", f"vmin {lo} > vmax {hi}", "vmin <= vmax")
+    machine.events.set_valuator(d, min(max(i, lo), hi), lo, hi)
 
 
 @glcall(immediate=True)

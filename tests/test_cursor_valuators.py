@@ -8,10 +8,10 @@ import pytest
 
 from irisgl import *  # noqa: F401,F403
 from irisgl import GLError
+from irisgl._current import machine
 
 
 def queue():
-    from irisgl._current import machine
     return list(machine.events.entries)
 
 
@@ -88,11 +88,36 @@ def test_setvaluator_sets_value_without_queueing(open_window):
     setvaluator(MOUSEX, 640, 0, 1279)
     assert getvaluator(MOUSEX) == 640
     assert qtest() == 0
-    with pytest.raises(GLError):
-        setvaluator(MOUSEX, 2000, 0, 1279)  # init outside the range
-    assert getvaluator(MOUSEX) == 640
+    setvaluator(MOUSEX, 2000, 0, 1279)      # init outside the range: held at its edge
+    assert getvaluator(MOUSEX) == 1279
+    setvaluator(MOUSEX, -20, 0, 1279)
+    assert getvaluator(MOUSEX) == 0
+    with pytest.raises(GLError, match="vmin 10 > vmax 5"):
+        setvaluator(MOUSEX, 7, 10, 5)
+    assert getvaluator(MOUSEX) == 0
     with pytest.raises(GLError):
         setvaluator(LEFTMOUSE, 0, 0, 1)     # not a valuator
+
+
+def test_a_device_reports_values_within_its_range(open_window):
+    """setvaluator(3G): vmin and vmax are "the minimum and maximum values the
+    device can assume": what the window system reports (a real window's
+    motion, machine.events.device_input) is held in the range, queued and
+    read alike; the mouse's power-on range is the screen."""
+    open_window()
+    qreset()
+    qdevice(MOUSEY)
+    ev = machine.events
+    ev.device_input(MOUSEY, 5000)
+    assert getvaluator(MOUSEY) == 1023 and qread() == (MOUSEY, 1023)
+    setvaluator(MOUSEY, 100, 0, 479)                # e.g. held to a window while dragging
+    ev.device_input(MOUSEY, 700)
+    ev.device_input(MOUSEY, -3)
+    assert qread() == (MOUSEY, 479) and qread() == (MOUSEY, 0)
+    assert getvaluator(MOUSEY) == 0
+    setvaluator(DIAL3, 0, -50, 50)                  # any valuator
+    ev.device_input(DIAL3, 80)
+    assert getvaluator(DIAL3) == 50
 
 
 def test_unreported_valuator_reads_zero():

@@ -103,7 +103,12 @@ class EventQueue:
 
     def device_input(self, dev, val):
         """A device changed in a real window (display/tkwindow.py,
-        notebook.py): its state always, an entry when it is queued."""
+        notebook.py): its state always, an entry when it is queued.  A
+        valuator reports a value within its range (setvaluator(3G); the
+        mouse: the screen), so a drag past the range reads its edge."""
+        if dev in self.ranges:
+            lo, hi = self.ranges[dev]
+            val = min(max(val, lo), hi)
         if dev in self.queued:
             self.enter(dev, val)
         elif is_valuator(dev):
