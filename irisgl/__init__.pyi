@@ -1606,7 +1606,8 @@ def czclear(cval: int, zval: int) -> None:
     """C: void czclear(unsigned long cval, long zval)
 
 czclear(3G): colour (packed, or an index in cmode) then z, over
-viewport ∩ scrmask; ignores every writemask; z clamped to the z range."""
+viewport ∩ scrmask; ignores every writemask; z a C long clamped to the z
+range (_current.screen_z: ``czclear(c, 0xff800000)`` clears to GD_ZMIN)."""
 
 def dbtext(string: str) -> None:
     """C: void dbtext(String str)
@@ -1916,12 +1917,14 @@ all ones, in double-buffer mode back enabled and front disabled."""
 def genobj() -> Object:
     """C: Object genobj(void)
 
-genobj(3G): an object number not in use."""
+genobj(3G): a unique object number, never handed out before nor in use.
+So numbers taken by genobj calls in a row, before any makeobj, differ
+(``a = genobj(); b = genobj()``)."""
 
 def gentag() -> Tag:
     """C: Tag gentag(void)
 
-gentag(3G): a tag number not used in the open object."""
+gentag(3G): a unique tag number, never handed out before nor in the open object."""
 
 def getbackface() -> int:
     """C: long getbackface(void)
@@ -2465,7 +2468,8 @@ def lsetdepth(near: int, far: int) -> None:
     """C: void lsetdepth(long near, long far)
 
 lsetdepth(3G): window z of the near and far clip planes; values are
-clamped to GD_ZMIN..GD_ZMAX; near > far is allowed (reversed depth)."""
+taken as C longs and clamped to GD_ZMIN..GD_ZMAX (_current.screen_z);
+near > far is allowed (reversed depth)."""
 
 def lshaderange(lowin: Colorindex, highin: Colorindex, znear: int, zfar: int) -> None:
     """C: void lshaderange(Colorindex lowin, Colorindex highin, long znear, long zfar)
@@ -2492,7 +2496,9 @@ makeobj(3G): start recording into obj (its old contents are deleted)."""
 def maketag(t: Tag) -> None:
     """C: void maketag(Tag t)
 
-maketag(3G): a tag at the edit point of the open object."""
+maketag(3G): a tag at the edit point of the open object (moved there if it has it).
+A tag number the object already has moves here: "if you later define a
+tag with the same value, the first tag is lost" (gentag(3G))."""
 
 def mapcolor(i: Colorindex, r: int, g: int, b: int) -> None:
     """C: void mapcolor(Colorindex i, short red, short green, short blue)
@@ -2642,7 +2648,10 @@ def newtag(newtg: Tag, oldtg: Tag, offst: Offset) -> None:
 
 newtag(3G): tag ``newtg`` placed ``offst`` routines beyond tag
 ``oldtg`` in the object open for editing (immediate).  [S] the offset
-counts recorded calls, not tags; beyond the end of the object is an error."""
+counts recorded calls, not tags; beyond the end of the object is an error.
+A ``newtg`` the object already has moves to the new place, as maketag's
+does (gentag(3G): "the first tag is lost"); ``newtg`` equal to ``oldtg``,
+STARTTAG or ENDTAG is an error."""
 
 def nmode(mode: int) -> None:
     """C: void nmode(long mode)
@@ -3492,8 +3501,13 @@ color(3G).  An error in RGB mode."""
 def setvaluator(dev: Device, init: int, vmin: int, vmax: int) -> None:
     """C: void setvaluator(Device dev, short init, short vmin, short vmax)
 
-setvaluator(3G): a valuator's value and range (vmin <= init <= vmax);
-for MOUSEX/MOUSEY the cursor position.  Nothing is queued."""
+setvaluator(3G): a valuator's value and range; what it reports stays in the range.
+The range is "the minimum and maximum values the device can assume";
+for MOUSEX/MOUSEY the value is the cursor position.  Nothing is queued.
+From then on the values the device reports are held in [vmin, vmax] (a
+mouse dragged out of the range reads its edge); [S] an init outside the
+range is held there too, and vmin > vmax is an error (the man page
+lists no error)."""
 
 def setvideo(reg: int, value: int) -> None:
     """C: void setvideo(long reg, long value)

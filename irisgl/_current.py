@@ -214,6 +214,16 @@ def ulong(x):
     return int(x) & 0xFFFFFFFF
 
 
+def screen_z(call, v, what):
+    """A window z argument, a C ``long`` (czclear, lsetdepth, lshaderange,
+    lRGBrange): reduced to a 32-bit signed value as C converts it, so
+    ``0xff800000`` is -0x800000, GD_ZMIN (docs/semantics.md §1), then
+    clamped to the VGX range GD_ZMIN..GD_ZMAX."""
+    from vgx_emulator.framebuffer import ZMAX, ZMIN
+    z = (integer(call, v, what) + 0x80000000) % 0x100000000 - 0x80000000
+    return min(max(z, ZMIN), ZMAX)
+
+
 def axis(call, a):
     if not isinstance(a, str) or a.lower() not in ("x", "y", "z"):
         fail(call, f"axis {a!r} is not 'x', 'y' or 'z'", "pass one of 'x', 'y', 'z'")

@@ -1,8 +1,7 @@
 """z-buffer calls (docs/semantics.md §5, §1)."""
-from vgx_emulator.framebuffer import ZMAX, ZMIN
 
 from . import constants as K
-from ._current import boolean, glcall, integer, machine, token, ulong, win
+from ._current import boolean, glcall, integer, machine, screen_z, token, ulong, win
 
 __all__ = ["zbuffer", "getzbuffer", "zfunction", "zwritemask", "zclear", "czclear"]
 
@@ -64,7 +63,8 @@ def zclear(*ignored):
 @glcall
 def czclear(cval, zval):
     """czclear(3G): colour (packed, or an index in cmode) then z, over
-    viewport ∩ scrmask; ignores every writemask; z clamped to the z range."""
+    viewport ∩ scrmask; ignores every writemask; z a C long clamped to the z
+    range (_current.screen_z: ``czclear(c, 0xff800000)`` clears to GD_ZMIN)."""
     c = ulong(integer("czclear", cval, "colour"))
-    z = min(max(integer("czclear", zval, "z"), ZMIN), ZMAX)
+    z = screen_z("czclear", zval, "z")
     machine.czclear(win("czclear"), c, z)

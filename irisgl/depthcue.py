@@ -8,9 +8,8 @@ The ramp is computed per vertex after the viewport transform and
 interpolated across the primitive (vgx_emulator/geometry/depthcue.py).
 """
 from vgx_emulator.errors import fail
-from vgx_emulator.framebuffer import ZMAX, ZMIN
 
-from ._current import boolean, glcall, integer, machine, win
+from ._current import boolean, glcall, integer, machine, screen_z, win
 
 __all__ = ["depthcue", "getdcm", "lshaderange", "shaderange", "lRGBrange", "RGBrange",
            "setshade", "getshade"]
@@ -32,11 +31,6 @@ def getdcm():
     return 1 if win("getdcm").st.depthcue else 0
 
 
-def _z(call, v, what):
-    """A screen z of the ramp, clamped to the VGX z range (GD_ZMIN..GD_ZMAX)."""
-    return min(max(integer(call, v, what), ZMIN), ZMAX)
-
-
 def _index(call, v, what):
     """A Colorindex of the ramp: an unsigned short, clamped to the 12 planes ([S])."""
     return min(max(integer(call, v, what), 0), 0xFFF)
@@ -45,7 +39,7 @@ def _index(call, v, what):
 def _set_shaderange(call, lowin, highin, znear, zfar):
     w = win(call)
     r = (_index(call, lowin, "lowin"), _index(call, highin, "highin"),
-         _z(call, znear, "znear"), _z(call, zfar, "zfar"))
+         screen_z(call, znear, "znear"), screen_z(call, zfar, "zfar"))
     if w.st.shaderange != r:
         machine.state_change(w)
         w.st.shaderange = r
@@ -69,7 +63,7 @@ def _set_rgbrange(call, args):
     w = win(call)
     names = ("rmin", "gmin", "bmin", "rmax", "gmax", "bmax")
     comps = tuple(min(max(integer(call, v, n), 0), 255) for v, n in zip(args[:6], names))
-    r = comps + (_z(call, args[6], "znear"), _z(call, args[7], "zfar"))
+    r = comps + (screen_z(call, args[6], "znear"), screen_z(call, args[7], "zfar"))
     if w.st.rgbrange != r:
         machine.state_change(w)
         w.st.rgbrange = r

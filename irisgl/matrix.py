@@ -12,7 +12,7 @@ from vgx_emulator.errors import fail, warn
 from vgx_emulator.geometry import stack as S
 
 from . import constants as K
-from ._current import axis, glcall, integer, machine, num, win
+from ._current import axis, glcall, integer, machine, num, screen_z, win
 
 __all__ = ["mmode", "getmmode", "loadmatrix", "multmatrix", "getmatrix", "pushmatrix",
            "popmatrix", "translate", "scale", "rot", "rotate", "perspective", "ortho",
@@ -314,9 +314,8 @@ def popviewport():
 
 
 def _setdepth(call, near, far):
-    from vgx_emulator.framebuffer import ZMAX, ZMIN
-    n = min(max(integer(call, near, "near"), ZMIN), ZMAX)
-    f = min(max(integer(call, far, "far"), ZMIN), ZMAX)
+    n = screen_z(call, near, "near")
+    f = screen_z(call, far, "far")
     w = win(call)
     machine.state_change(w)
     w.st.depth_range = (n, f)
@@ -325,7 +324,8 @@ def _setdepth(call, near, far):
 @glcall
 def lsetdepth(near, far):
     """lsetdepth(3G): window z of the near and far clip planes; values are
-    clamped to GD_ZMIN..GD_ZMAX; near > far is allowed (reversed depth)."""
+    taken as C longs and clamped to GD_ZMIN..GD_ZMAX (_current.screen_z);
+    near > far is allowed (reversed depth)."""
     _setdepth("lsetdepth", near, far)
 
 

@@ -288,6 +288,23 @@ def test_lsetdepth_near_and_far_planes():
     _uniform(_z(), 300)
 
 
+def test_z_arguments_are_c_longs():
+    """lsetdepth(3G) and czclear(3G) take C longs: a hex constant past
+    2**31 is the 32-bit value C passes (0xff800000 = -0x800000, GD_ZMIN).
+    A Personal IRIS program's reversed depth with GEQUAL, cleared that way,
+    draws its surfaces."""
+    _window()
+    lsetdepth(0xff800000, 0x7fffff)
+    assert tuple(lgetdepth()) == (ZMIN, ZMAX)
+    lsetdepth(0x7fffff, 0x0ff)
+    zbuffer(TRUE)
+    zfunction(ZF_GEQUAL)
+    czclear(0, 0xff800000)
+    _uniform(_z(), ZMIN)
+    _quad(0.0, RED)
+    _uniform(_c(), RED)
+
+
 @pytest.mark.parametrize("order", ["near-first", "far-first"])
 def test_reversed_depth_range_with_gequal(order):
     """lsetdepth(ZMAX, ZMIN) + ZF_GEQUAL + clear to ZMIN: the nearer surface

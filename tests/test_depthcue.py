@@ -148,8 +148,10 @@ def test_errors_leave_state(open_window):
         lRGBrange(0, 0, 0, 1, 1, None, 0, 1)
     assert machine.current.st.shaderange == (1, 2, 3, 4)
     assert machine.current.st.rgbrange == (0, 0, 0, 255, 255, 255, ZMIN, ZMAX)
-    lshaderange(0, 9, -2 ** 40, 2 ** 40)        # z clamped to the VGX range
+    lshaderange(0, 9, -2 ** 30, 2 ** 30)        # z clamped to the VGX range
     assert machine.current.st.shaderange == (0, 9, ZMIN, ZMAX)
+    lshaderange(0, 9, 0xff800000, 2 ** 32 + 7)  # C longs: 32-bit two's complement first
+    assert machine.current.st.shaderange == (0, 9, ZMIN, 7)
 
 
 def test_setshade_getshade(open_window):

@@ -368,8 +368,14 @@ def test_c3f_and_c3i_clamp(win):
 
 
 @pytest.mark.parametrize("zval, expect", [(2 ** 30, ZMAX), (-2 ** 30, ZMIN), (ZMAX + 1, ZMAX),
-                                          (ZMIN - 1, ZMIN), (ZMAX, ZMAX), (-5, -5)])
+                                          (ZMIN - 1, ZMIN), (ZMAX, ZMAX), (-5, -5),
+                                          # a C long: 32-bit two's complement first
+                                          (0xff800000, ZMIN), (0xffffffff, -1),
+                                          (2 ** 32 + 5, 5), (0x80000000, ZMIN)])
 def test_czclear_clamps_z(win, zval, expect):
+    """czclear(3G)'s zval is a C long: a hex constant such as 0xff800000 (a
+    Personal IRIS program's GD_ZMIN) is the 32-bit value C passes, then the
+    z range clamps it."""
     czclear(0xFF000000, zval)
     readsource(SRC_ZBUFFER)
     z = lrectread(0, 0, 15, 11)
