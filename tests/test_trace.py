@@ -120,6 +120,58 @@ def test_trace_write_and_cli(tmp_path, heidmann):
     assert machine.trace_hook is None and machine.call_hook is None
 
 
+def test_a_run_of_one_call_shows_its_first_and_last_arguments(vgx, open_window):
+    """A run of one call is one line with its count; the arguments are shown
+    once when every call had them, else the first and the last (a run
+    listed with only its first arguments read as identical calls)."""
+    from irisgl import bgnpolygon, endpolygon, gflush, pclos, pdr, pmv, v2i
+    from vgx_emulator.trace import _index
+    tr = Trace(frame=1).install(vgx)
+    open_window(16, 8)
+    pmv(3, 3, -3)
+    pdr(3, 3, -3)
+    pdr(3, -3, -3)
+    pdr(3, -3, 3)
+    pclos()
+    bgnpolygon()
+    for _ in range(3):
+        v2i((1, 1))
+    endpolygon()
+    gflush()
+    tr.uninstall()
+    calls = tr.steps[0].calls
+    assert ("pdr", "3, 3, -3) … (3, -3, 3", 3) in calls
+    assert ("v2i", "(1, 1)", 3) in calls
+    text = _index(tr, "t")
+    assert "pdr(3, 3, -3) … (3, -3, 3)</code> &times;3" in text
+
+
+def test_a_run_that_ends_the_pass_keeps_its_other_calls(vgx, open_window):
+    """The call that ends a pass is taken off its run: callobj(a),
+    callobj(b), callobj(c) where c changes the z function lists callobj
+    (a) … (b) ×2 in the pass and opens the next with callobj(c)."""
+    from irisgl import ZF_ALWAYS, callobj, closeobj, gflush, makeobj, rectfi, zfunction
+    open_window(16, 8)
+    for obj, x in ((1, 0), (2, 4)):
+        makeobj(obj)
+        rectfi(x, 0, x + 1, 1)
+        closeobj()
+    makeobj(3)
+    zfunction(ZF_ALWAYS)
+    rectfi(8, 0, 9, 1)
+    closeobj()
+    tr = Trace(frame=1).install(vgx)
+    callobj(1)
+    callobj(2)
+    callobj(3)
+    gflush()
+    tr.uninstall()
+    first, second = tr.steps[0], tr.steps[1]
+    assert first.calls == [("callobj", "1) … (2", 2)]
+    assert first.ended_by == "callobj(3)"
+    assert second.calls[0] == ("callobj", "3", 1)
+
+
 def test_trace_of_a_later_frame(vgx, open_window):
     from irisgl import clear, cpack, gflush, rectfi
     tr = Trace(frame=2).install(vgx)

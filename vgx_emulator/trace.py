@@ -121,6 +121,33 @@ class Step:
         return f"<Step {self.index} {self.label} ({len(self.calls)} call lines)>"
 
 
+class _Run:
+    """A run of top-level calls of one name, listed as one line: ``v3f(1, 2,
+    3) ×24`` when every call had those arguments, ``pdr(3, 3, -3) … (3, -3,
+    3) ×3`` (the first and the last) when they differed."""
+    __slots__ = ("name", "first", "count", "last", "prev", "varied", "varied_prev")
+
+    def __init__(self, name, args):
+        self.name, self.first, self.count, self.last = name, args, 1, args
+        self.prev, self.varied, self.varied_prev = None, False, False
+
+    def add(self, args):
+        self.prev, self.varied_prev = self.last, self.varied
+        self.varied = self.varied or args != self.last
+        self.last = args
+        self.count += 1
+
+    def drop_last(self):
+        """Takes the run's last call off (it opens the next pass); once only."""
+        self.last, self.varied = self.prev, self.varied_prev
+        self.count -= 1
+
+    def line(self):
+        """(name, arguments, count) as Step.calls lists them."""
+        args = f"{self.first}) … ({self.last}" if self.varied else self.first
+        return (self.name, args, self.count)
+
+
 class Trace:
     """Records the passes of frame ``frame`` (1 = the first frame drawn).
     ``keep``: keep every bank of every step in memory (Step.arrays; a bank
@@ -133,7 +160,7 @@ class Trace:
         self.outdir = Path(outdir) if outdir is not None else None
         self.steps = []
         self.frame_no = 1
-        self.pending = []           # [name, first args, count, last args] runs of calls
+        self.pending = []           # _Run: the runs of calls of this pass
         self.dropped = 0            # calls beyond MAX_CALLS in this pass
         self.last = None            # (name, args, listed) of the last top-level call
         self.active = None          # the top-level call running now
@@ -165,15 +192,14 @@ class Trace:
         if self.depth == 0 and self.recording:
             args_s = ", ".join(_arg(a) for a in args)
             p = self.pending
-            if self.dropped or (len(p) >= MAX_CALLS and p[-1][0] != name):
+            if self.dropped or (len(p) >= MAX_CALLS and p[-1].name != name):
                 self.dropped += 1
-            elif p and p[-1][0] == name:
-                p[-1][2] += 1
-                p[-1][3] = args_s
+            elif p and p[-1].name == name:
+                p[-1].add(args_s)
             else:
-                p.append([name, args_s, 1, args_s])
+                p.append(_Run(name, args_s))
             self.active = name
-            self.last = (name, args_s, p[-1][0] == name and p[-1][3] is args_s)
+            self.last = (name, args_s, p[-1].name == name and p[-1].last is args_s)
         self.depth += 1
         try:
             return f(*args)
@@ -203,28 +229,25 @@ class Trace:
             self.dropped = 0
 
     def _step(self, m, win, event, detail):
-        calls = [c[:3] for c in self.pending]
-        if self.dropped:
-            calls.append(["...", f"{self.dropped} more calls", 1])
+        runs = list(self.pending)
         ended_by = None
         if event == "draw" and self.active is not None and self.last is not None:
             name, args_s, listed = self.last
             ended_by = f"{name}({args_s})"         # it opens the next pass
             if listed:
-                if calls[-1][0] == "...":
-                    calls.pop()
-                if calls[-1][2] > 1:
-                    calls[-1] = [name, calls[-1][1], calls[-1][2] - 1]
+                if runs[-1].count > 1:
+                    runs[-1].drop_last()
                 else:
-                    calls.pop()
+                    runs.pop()
             elif self.dropped:
                 self.dropped -= 1
-                calls[-1] = ["...", f"{self.dropped} more calls", 1]
-            self.pending = [[name, args_s, 1, args_s]]
+            self.pending = [_Run(name, args_s)]
         else:
             self.pending = []
+        calls = [r.line() for r in runs]
+        if self.dropped:
+            calls.append(("...", f"{self.dropped} more calls", 1))
         self.dropped = 0
-        calls = [tuple(c) for c in calls]
         label = EVENTS[event]
         if event == "acbuf":
             label = f"acbuf({AC_NAMES[detail[0]]}, {detail[1]:g})"
