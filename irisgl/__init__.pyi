@@ -3146,9 +3146,10 @@ rdrs(3G): a line from the graphics position to the graphics position + (dx, dy[,
 def readRGB(n: int, red: ArrayLike | None = None, green: ArrayLike | None = None, blue: ArrayLike | None = None) -> Any:
     """C: long readRGB(short n, RGBvalue red[], RGBvalue green[], RGBvalue blue[])
 
-readRGB(3G): ``count, r, g, b = readRGB(n)``: n pixels from the
-character position rightwards (from readsource), 0 if it is outside the
-viewport; the position moves past the last one."""
+readRGB(3G): n pixels from the character position rightwards (from
+readsource), 0 if it is outside the viewport; the position moves past
+the last one.  ``count, r, g, b = readRGB(n)``; given the three arrays
+(C's), fills them and returns the count, as C does."""
 
 def readcomponent(c: int) -> None:
     """C: void readcomponent(long c)
@@ -3169,9 +3170,10 @@ Returns an (h, w) uint32 array (row 0 at the bottom), or, given
 def readpixels(n: int, colors: ArrayLike | None = None) -> Any:
     """C: long readpixels(short n, Colorindex colors[])
 
-readpixels(3G): ``count, colors = readpixels(n)``: n colour indices
-from the character position rightwards, 0 if it is outside the
-viewport; the position moves past the last one."""
+readpixels(3G): n colour indices from the character position
+rightwards, 0 if it is outside the viewport; the position moves past
+the last one.  ``count, colors = readpixels(n)``; ``readpixels(n, buf)``
+fills buf and returns the count, as C does."""
 
 def readsource(src: int) -> None:
     """C: void readsource(long src)

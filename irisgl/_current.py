@@ -209,6 +209,38 @@ def words(a, mask):
     return a.astype(np.int64) & mask
 
 
+def out_array(call, a, n, what, hint=None):
+    """An array C fills, ported as an optional trailing argument (porting.md
+    §3): None (the call returns a new array), or a writable numeric numpy
+    array or a list of at least ``n`` elements (a longer C buffer is filled
+    in its first n); anything else is a GLError naming the call."""
+    if a is None:
+        return
+    if isinstance(a, np.ndarray):
+        if not a.flags.writeable:
+            fail(call, f"{what} is a read-only array", "pass a writable array, or nothing")
+        if a.dtype.kind not in "iuf":
+            fail(call, f"{what} has dtype {a.dtype}", "pass a numeric array, or nothing")
+        size = a.size
+    elif isinstance(a, list):
+        size = len(a)
+    else:
+        fail(call, f"{what} {a!r} is not an array", "pass a numpy array or a list, or nothing")
+    if size < n:
+        fail(call, f"{what} has {size} elements", hint or f"pass at least {n}, or nothing")
+
+
+def fill(a, values):
+    """Store ``values`` (an array or a list) in the first elements of a
+    checked out_array, in its own element order whatever its layout (C
+    fills the caller's buffer); a list gets Python numbers."""
+    values = np.asarray(values)
+    if isinstance(a, np.ndarray):
+        a.flat[:values.size] = values
+    else:
+        a[:values.size] = values.tolist()
+
+
 def ulong(x):
     """unsigned long arguments: reduced modulo 2**32 (docs/semantics.md §1)."""
     return int(x) & 0xFFFFFFFF

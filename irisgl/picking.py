@@ -16,7 +16,7 @@ from vgx_emulator import picking as P
 from vgx_emulator.errors import fail
 from vgx_emulator.geometry import stack as S
 
-from ._current import glcall, integer, machine, not_emulated, win
+from ._current import fill, glcall, integer, machine, not_emulated, out_array, win
 
 __all__ = ["pick", "endpick", "gselect", "endselect", "initnames", "loadname", "pushname",
            "popname", "picksize", "clearhitcode", "gethitcode", "mapw", "mapw2",
@@ -31,31 +31,8 @@ def _is_buffer(b):
 
 
 def _buffer(call, b, need):
-    """A C ``short buffer[]`` the call fills: a writable numpy array (read as
-    flat) or a list, with at least ``need`` elements."""
-    if isinstance(b, np.ndarray):
-        if not b.flags.writeable:
-            fail(call, "the buffer array is read-only", "pass a writable array")
-        if b.dtype.kind not in "iuf":
-            fail(call, f"the buffer has dtype {b.dtype}", "pass a numeric (int16) array")
-        if b.size and not (b.flags.c_contiguous or b.flags.f_contiguous):
-            fail(call, "the buffer array is not contiguous", "pass a contiguous array")
-        n = b.size
-    elif isinstance(b, list):
-        n = len(b)
-    else:
-        fail(call, f"buffer {b!r} is not an array", "pass a numpy int16 array or a list")
-    if n < need:
-        fail(call, f"the buffer has {n} elements", f"it must hold numnames = {need}")
-    return b
-
-
-def _fill(b, words):
-    if isinstance(b, np.ndarray):
-        flat = b.reshape(-1, order="A")
-        flat[:len(words)] = words
-    else:
-        b[:len(words)] = words
+    """A C ``short buffer[]`` the call fills, at least ``need`` elements."""
+    out_array(call, b, need, "the buffer", f"it must hold numnames = {need}")
 
 
 def _numnames(call, n):
@@ -105,10 +82,10 @@ def _end(call, mode, buffer):
     words = s.words()
     n = s.count()
     if buffer is not None:
-        _fill(buffer, words)
+        fill(buffer, words)
         return n
     out = s.buffer if s.buffer is not None else np.zeros(s.numnames, np.int16)
-    _fill(out, words)
+    fill(out, words)
     return n, out
 
 

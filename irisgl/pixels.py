@@ -4,7 +4,7 @@ import numpy as np
 from vgx_emulator.errors import fail
 
 from . import constants as K
-from ._current import glcall, integer, machine, num, token, win
+from ._current import fill, glcall, integer, machine, num, out_array, token, win
 from ._current import words as _words
 
 __all__ = ["readsource", "lrectread", "rectread", "lrectwrite", "rectwrite", "rectcopy",
@@ -26,28 +26,6 @@ def _order(w, block):
         if pm.get(K.PM_RTOL):
             block = block[:, ::-1]
     return block
-
-
-def _out(call, parray, n):
-    """Check a C out-array: a writable numpy array or a list of at least n
-    elements (a longer C buffer is filled in its first n, as C does)."""
-    if parray is None:
-        return
-    if isinstance(parray, np.ndarray) and not parray.flags.writeable:
-        fail(call, "parray is a read-only array", "pass a writable array, or nothing")
-    size = parray.size if isinstance(parray, np.ndarray) else (
-        len(parray) if isinstance(parray, list) else -1)
-    if size < n:
-        fail(call, "parray is not a numpy array or list of at least "
-             "(x2-x1+1)*(y2-y1+1) elements", f"pass {n} elements or nothing")
-
-
-def _fill(parray, words):
-    """Store the flat pixel words in the first elements of parray."""
-    if isinstance(parray, np.ndarray):
-        parray.flat[:words.size] = words.astype(parray.dtype, copy=False)   # any layout
-    else:
-        parray[:words.size] = words.tolist()
 
 
 @glcall
@@ -98,14 +76,14 @@ def lrectread(x1, y1, x2, y2, parray=None):
     w = win("lrectread")
     x1, y1, x2, y2 = _rect("lrectread", x1, y1, x2, y2)
     n = (x2 - x1 + 1) * (y2 - y1 + 1)
-    _out("lrectread", parray, n)
+    out_array("lrectread", parray, n, "parray", f"pass (x2-x1+1)*(y2-y1+1) = {n}, or nothing")
     block = _order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource))
     if parray is None:
         return block if w.readsource == K.SRC_ZBUFFER else block.astype(np.uint32)
     flat = block.reshape(-1)
     if isinstance(parray, np.ndarray) or w.readsource != K.SRC_ZBUFFER:
         flat = flat.view(np.uint32)          # a list gets signed z words, as returned
-    _fill(parray, flat)
+    fill(parray, flat)
     return n
 
 
@@ -115,12 +93,12 @@ def rectread(x1, y1, x2, y2, parray=None):
     w = win("rectread")
     x1, y1, x2, y2 = _rect("rectread", x1, y1, x2, y2)
     n = (x2 - x1 + 1) * (y2 - y1 + 1)
-    _out("rectread", parray, n)
+    out_array("rectread", parray, n, "parray", f"pass (x2-x1+1)*(y2-y1+1) = {n}, or nothing")
     block = (_order(w, machine.lrectread(w, x1, y1, x2, y2, w.readsource)).astype(np.int64)
              & 0xFFFF).astype(np.uint16)
     if parray is None:
         return block
-    _fill(parray, block.reshape(-1))
+    fill(parray, block.reshape(-1))
     return n
 
 

@@ -12,8 +12,8 @@ from vgx_emulator import config
 from vgx_emulator.errors import fail
 
 from . import constants as K
-from ._current import (HEADLESS, boolean, glcall, integer, machine, not_emulated, num,
-                       token, ulong, win)
+from ._current import (HEADLESS, boolean, fill, glcall, integer, machine, not_emulated, num,
+                       out_array, token, ulong, win)
 from ._current import words as _words
 
 __all__ = ["ringbell", "setbell", "blanktime", "blankscreen", "clkon", "clkoff", "lampon",
@@ -461,22 +461,6 @@ def _count(call, n):
     return n
 
 
-def _out_array(call, a, what):
-    """An array C fills, ported as an optional argument: None (use the
-    returned arrays), a numpy array or a list; anything else is a misuse."""
-    if a is not None and not isinstance(a, (np.ndarray, list)):
-        fail(call, f"{what} {a!r} is not an array", "pass an array to fill, or none")
-
-
-def _fill(given, vals, n):
-    """Fill the first n elements of an array or list at least n long (C
-    fills the caller's buffer)."""
-    if isinstance(given, np.ndarray) and given.size >= n:
-        given.reshape(-1)[:n] = vals
-    elif isinstance(given, list) and len(given) >= n:
-        given[:n] = vals.tolist()
-
-
 def _row(call, a, n, what, mask):
     try:
         arr = np.asarray(a).reshape(-1)
@@ -535,34 +519,43 @@ def _read_row(call, w, n):
 
 @glcall(immediate=True)
 def readRGB(n, red=None, green=None, blue=None):
-    """readRGB(3G): ``count, r, g, b = readRGB(n)``: n pixels from the
-    character position rightwards (from readsource), 0 if it is outside the
-    viewport; the position moves past the last one."""
+    """readRGB(3G): n pixels from the character position rightwards (from
+    readsource), 0 if it is outside the viewport; the position moves past
+    the last one.  ``count, r, g, b = readRGB(n)``; given the three arrays
+    (C's), fills them and returns the count, as C does."""
     w = win("readRGB")
     n = _count("readRGB", n)
     if not w.st.rgb:
         fail("readRGB", "in colour-map mode", "RGBmode() then gconfig(); or readpixels")
-    for given, what in ((red, "red"), (green, "green"), (blue, "blue")):
-        _out_array("readRGB", given, what)
+    given = (red, green, blue)
+    if any(a is not None for a in given) and any(a is None for a in given):
+        fail("readRGB", "some of red, green, blue given", "pass all three arrays, or none")
+    for a, what in zip(given, ("red", "green", "blue")):
+        out_array("readRGB", a, n, what)
     count, words = _read_row("readRGB", w, n)
     out = [((words >> s) & 0xFF).astype(np.uint8) for s in (0, 8, 16)]
-    for given, val in zip((red, green, blue), out):
-        _fill(given, val, n)
-    return (count,) + tuple(out)
+    if red is None:
+        return (count,) + tuple(out)
+    for a, val in zip(given, out):
+        fill(a, val[:count])
+    return count
 
 
 @glcall(immediate=True)
 def readpixels(n, colors=None):
-    """readpixels(3G): ``count, colors = readpixels(n)``: n colour indices
-    from the character position rightwards, 0 if it is outside the
-    viewport; the position moves past the last one."""
+    """readpixels(3G): n colour indices from the character position
+    rightwards, 0 if it is outside the viewport; the position moves past
+    the last one.  ``count, colors = readpixels(n)``; ``readpixels(n, buf)``
+    fills buf and returns the count, as C does."""
     w = win("readpixels")
     n = _count("readpixels", n)
-    _out_array("readpixels", colors, "colors")
+    out_array("readpixels", colors, n, "colors")
     count, words = _read_row("readpixels", w, n)
     vals = (words.astype(np.int64) & 0xFFFF).astype(np.uint16)
-    _fill(colors, vals, n)
-    return count, vals
+    if colors is None:
+        return count, vals
+    fill(colors, vals[:count])
+    return count
 
 
 _RC = {K.RC_ABGR: "RC_ABGR", K.RC_ALPHA: "RC_ALPHA", K.RC_BLUE: "RC_BLUE",

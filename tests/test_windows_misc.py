@@ -496,6 +496,39 @@ def test_writepixels_readpixels_colour_map(open_window):
         writeRGB(1, [1], [1], [1])             # RGB call in colour-map mode
 
 
+def test_readpixels_readRGB_fill_given_arrays_and_return_the_count(open_window):
+    """readpixels(3G), readRGB(3G): C fills the caller's arrays and returns
+    the count; ported with the arrays given, the call returns the count
+    alone (docs/porting.md §3), the arrays hold the values, and a position
+    outside the viewport (count 0) leaves them alone.  An array shorter than
+    n, a read-only one, or (readRGB) only some of the three is a GLError."""
+    open_window(8, 2, rgb=False)
+    cur().st.cpos = (0, 0)
+    writepixels(4, [1, 2, 3, 4])
+    cur().st.cpos = (1, 0)
+    buf = np.full(3, 99, np.uint16)
+    assert readpixels(2, buf) == 2 and list(buf) == [2, 3, 99]
+    cur().st.cpos = (100, 0)
+    assert readpixels(2, buf) == 0 and list(buf) == [2, 3, 99]
+    with pytest.raises(GLError, match="^readpixels: colors has 1 elements"):
+        readpixels(2, [0])
+    ro = np.zeros(4, np.uint16)
+    ro.flags.writeable = False
+    with pytest.raises(GLError, match="^readpixels: colors is a read-only array"):
+        readpixels(2, ro)
+    open_window(8, 2)
+    cur().st.cpos = (0, 0)
+    writeRGB(2, [10, 20], [1, 2], [7, 8])
+    cur().st.cpos = (0, 0)
+    r, g, b = [0] * 2, np.zeros(2, np.uint8), np.zeros(4, np.int32)
+    assert readRGB(2, r, g, b) == 2
+    assert r == [10, 20] and list(g) == [1, 2] and list(b) == [7, 8, 0, 0]
+    with pytest.raises(GLError, match="^readRGB: some of red, green, blue given"):
+        readRGB(2, r, None, None)
+    with pytest.raises(GLError, match="^readRGB: blue has 1 elements"):
+        readRGB(2, r, g, [0])
+
+
 # -- readdisplay -------------------------------------------------------------------------------
 def test_readdisplay_composes_windows_by_stacking(open_window):
     prefposition(10, 19, 10, 19)
