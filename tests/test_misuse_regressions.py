@@ -200,6 +200,31 @@ def test_dropped_primitive_warning_names_the_call_that_drew_it(open_window):
     assert [str(x.message).split(":")[0] for x in w] == ["v*/n3f/c*/t*"]
 
 
+def test_a_warning_is_shown_at_the_programs_line(open_window):
+    """A VGXWarning points at the program's line that made the call (here
+    this file), not into the emulator, whether it comes from the call
+    itself (perspective's near 0), from an object's replay (an undefined
+    object) or from the flush that dropped a primitive (gflush's line);
+    so Python's default filter shows it once per line of the program."""
+    import inspect
+    import warnings
+    open_window(16, 16)
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        here = inspect.currentframe().f_lineno
+        perspective(450, 1.0, 0.0, 10.0)               # here + 1
+        makeobj(5)
+        callobj(999)
+        closeobj()
+        callobj(5)                                     # here + 5: the replay warns
+        ortho2(-0.5, 15.5, -0.5, 15.5)
+        rectf(0, 0, float("nan"), 5)
+        gflush()                                       # here + 8: the flush drops it
+    got = [(str(x.message).split(":")[0], x.filename, x.lineno) for x in w]
+    assert got == [("perspective", __file__, here + 1), ("callobj", __file__, here + 5),
+                   ("rectf", __file__, here + 8)]
+
+
 # -- issue 19, second part: found by vgx_emulator.fuzz ------------------------
 def _snapshot():
     """Matrices, modes and banks of the current window, the machine's

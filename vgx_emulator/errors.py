@@ -1,4 +1,5 @@
 """GLError and the strict/lenient switch (docs/porting.md §4, docs/semantics.md §14)."""
+import os
 import sys
 import warnings
 
@@ -48,8 +49,20 @@ def fail(call, what, allowed=None):
     raise GLError(msg)
 
 
+#: the emulator's own source folders: a warning is placed at the first frame outside them
+_OURS = tuple(os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), d, "")
+              for d in ("vgx_emulator", "irisgl"))
+
+
 def warn(call, what):
-    warnings.warn(f"{call}: {what}", VGXWarning, stacklevel=3)
+    """A VGXWarning "<call>: <what>", shown at the program's line that made
+    the call (the first caller outside vgx_emulator and irisgl, however deep
+    the call wrapper, an object's replay or a flush put it), so Python's
+    default filter shows it once per line of the program."""
+    level, f = 2, sys._getframe(1)
+    while f is not None and f.f_code.co_filename.startswith(_OURS):
+        f, level = f.f_back, level + 1
+    warnings.warn(f"{call}: {what}", VGXWarning, stacklevel=level)
 
 
 try:        # numpy 2: the floating-point error state is a context variable
