@@ -50,6 +50,30 @@ def test_getgdesc_colour_maps():
     assert getgdesc(GD_BITS_OVER_SNG_CMODE) == 8
 
 
+def test_the_default_map_is_makemaps(open_window):
+    """makemap(1G): the eight named colours at 0..7, a black to almost-white
+    grey ramp of 24 entries at 32..55, a 5 x 8 x 5 colour cube from black to
+    white at 56..255 with green changing fastest, then red, then blue.
+    Entries the man page does not give (8..31, past 255) are black; greset
+    brings the map back."""
+    open_window(4, 4, rgb=False)
+    assert getmcolor(YELLOW) == (255, 255, 0) and getmcolor(WHITE) == (255, 255, 255)
+    greys = [getmcolor(32 + k) for k in range(24)]
+    assert all(r == g == b for r, g, b in greys)
+    assert greys[0] == (0, 0, 0) and greys[12] == (128, 128, 128) and greys[23][0] == 244
+    assert all(a[0] < b[0] for a, b in zip(greys, greys[1:]))
+    for r in range(5):
+        for g in range(8):
+            for b in range(5):
+                want = tuple(round(v * 255 / n) for v, n in ((r, 4), (g, 7), (b, 4)))
+                assert getmcolor(56 + g + 8 * r + 40 * b) == want
+    assert getmcolor(56) == (0, 0, 0) and getmcolor(255) == (255, 255, 255)
+    assert all(getmcolor(i) == (0, 0, 0) for i in (8, 15, 16, 31, 256, 4095))
+    mapcolor(40, 1, 2, 3)
+    greset()
+    assert getmcolor(40) == greys[8]
+
+
 def test_mapcolor_recolours_what_is_drawn(open_window):
     cwin(open_window)
     color(BLACK)

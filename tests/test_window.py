@@ -347,7 +347,9 @@ def test_mapcolor_recolours_drawn_pixels(open_window):
     color(100)
     pnt2i(2, 1)
     img = vgx_emulator.window_image()
-    assert tuple(img[6 - 1 - 1, 2]) == (0, 0, 0)          # entry 100 is black by default
+    # entry 100 by default: makemap's colour cube, 100 = 56 + g + 8 r + 40 b with b = 1,
+    # r = 0, g = 4: (0, 4 * 255 / 7, 255 / 4) rounded
+    assert tuple(img[6 - 1 - 1, 2]) == (0, 146, 64)
     mapcolor(RED, 10, 20, 30)
     mapcolor(100, 200, 150, 100)
     img = vgx_emulator.window_image()

@@ -21,10 +21,19 @@ __all__ = ["DEFAULT_MAP", "MapState", "default_colormap", "scanout", "scanout_wi
 
 
 def default_colormap():
-    """The 4096-entry map after ginit/greset: the eight named colours, the
-    rest black."""
+    """The 4096-entry map after ginit/greset, as IRIX's makemap(1G) leaves
+    it: the eight named colours at 0..7; a black to almost-white grey ramp
+    of 24 entries at 32..55 (entry 32 + k is k * 255 / 24, rounded); a
+    5 x 8 x 5 colour cube from black to white at 56..255, green changing
+    fastest, then red, then blue (entry 56 + g + 8 r + 40 b is (r * 255 / 4,
+    g * 255 / 7, b * 255 / 4), rounded).  [S] makemap's pastel desktop
+    colours at 8..15 are not given by the man page, and it leaves 16..31
+    (the X clients') and the entries past 255 alone: those are black."""
     lut = np.zeros((4096, 3), np.uint8)
     lut[:8] = DEFAULT_MAP
+    lut[32:56] = np.round(np.arange(24) * 255 / 24)[:, None]
+    b, r, g = np.meshgrid(np.arange(5), np.arange(5), np.arange(8), indexing="ij")
+    lut[56:256] = np.round(np.stack([r * 255 / 4, g * 255 / 7, b * 255 / 4], -1)).reshape(-1, 3)
     return lut
 
 
