@@ -74,3 +74,17 @@ def test_a_glerror_traceback_ends_at_the_program_call(tmp_path, capsys):
     assert any(s.startswith("vgx_emulator.errors.GLError: popmatrix:")
                or s.startswith("GLError: popmatrix:") for s in lines), err
     assert "irisgl" + "/" not in err.replace(str(prog), "") and "runner.py" not in err
+
+
+def test_the_runner_runs_as_a_module_without_runpys_warning(tmp_path):
+    """``python -m vgx_emulator.runner prog.py`` works like vgx-run, and the
+    package's import has not loaded the runner before runpy runs it (runpy's
+    RuntimeWarning, made an error here)."""
+    import subprocess
+    prog = _write(tmp_path, PROGRAM)
+    out = tmp_path / "m.png"
+    r = subprocess.run([sys.executable, "-W", "error::RuntimeWarning", "-m",
+                        "vgx_emulator.runner", str(prog), "--out", str(out)],
+                       capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "found in sys.modules" not in r.stderr and out.is_file()

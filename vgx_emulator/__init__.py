@@ -5,7 +5,6 @@ PNG output, the error mode.
 """
 from .errors import GLError, VGXWarning, error_mode, set_error_mode
 from .machine import VGX
-from .runner import run_program
 from . import menus
 from .menus import script as script_menus
 from .planes import planes
@@ -15,6 +14,16 @@ from . import precompile as _precompile
 __all__ = ["VGX", "GLError", "VGXWarning", "run_program", "save_png", "machine",
            "set_error_mode", "error_mode", "window_image", "menus", "script_menus",
            "planes", "Trace", "trace_program"]
+
+
+def __getattr__(name):
+    """``run_program`` is imported from the runner at first use, so that
+    ``python -m vgx_emulator.runner`` runs the runner module once (runpy
+    warns when the package's import has already loaded it)."""
+    if name == "run_program":
+        from .runner import run_program
+        return run_program
+    raise AttributeError(f"module 'vgx_emulator' has no attribute {name!r}")
 
 
 def machine():
