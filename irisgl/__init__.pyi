@@ -2667,8 +2667,9 @@ noborder(3G): the next window has no border; kept (wm["border"])."""
 def noise(dev: Device, delta: int) -> None:
     """C: void noise(Device dev, short delta)
 
-noise(3G): a valuator's entry is queued only when it changed by at
-least delta since its last queued entry (delta 1: every change)."""
+noise(3G): a valuator's report is queued only when it changed by at
+least delta since its last queued entry (delta 1: every change); what
+a program qenters is not filtered."""
 
 def noport() -> None:
     """C: void noport(void)
@@ -3074,10 +3075,13 @@ qdevice(3G): queue events of this device."""
 def qenter(dev: Device, val: int) -> None:
     """C: void qenter(Device dev, short val)
 
-qenter(3G): append an entry, as the window system would (a tied
-button brings its valuators, tie(3G)).  Devices 1-0x7FFF.  A C character
-constant ported as a one-character string (``qenter(KEYBD, 't')``) is its
-character code, as in C; qread gives that code back."""
+qenter(3G): append exactly this entry; the device's state follows it.
+A tied button brings no valuators and noise does not filter (tie(3G)
+and noise(3G) act when a device changes state, not on qenter): a
+program that enters a tied button enters its valuators itself.
+Devices 1-0x7FFF.  A C character constant ported as a one-character
+string (``qenter(KEYBD, 't')``) is its character code, as in C; qread
+gives that code back."""
 
 def qgetfd() -> int:
     """C: long qgetfd(void)
@@ -3751,7 +3755,8 @@ def tie(button: Device, val1: Device, val2: Device) -> None:
     """C: void tie(Device button, Device val1, Device val2)
 
 tie(3G): while the button is queued, its entry is followed by the
-current values of val1 then val2 (NULLDEV = none); both NULLDEV unties."""
+current values of val1 then val2 (NULLDEV = none); both NULLDEV unties.
+When the button changes state (the window system), not on a qenter."""
 
 def tlutbind(*args: Any, **kwargs: Any) -> NoReturn:
     """tlutbind(3G): not emulated (a RealityEngine texture feature (getgdesc(GD_TEXTURE_3D) and getgdesc(GD_TEXTURE_LUT) are 0 on the VGX))."""

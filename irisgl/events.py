@@ -115,10 +115,13 @@ def qtest():
 
 @glcall(immediate=True)
 def qenter(dev, val):
-    """qenter(3G): append an entry, as the window system would (a tied
-    button brings its valuators, tie(3G)).  Devices 1-0x7FFF.  A C character
-    constant ported as a one-character string (``qenter(KEYBD, 't')``) is its
-    character code, as in C; qread gives that code back."""
+    """qenter(3G): append exactly this entry; the device's state follows it.
+    A tied button brings no valuators and noise does not filter (tie(3G)
+    and noise(3G) act when a device changes state, not on qenter): a
+    program that enters a tied button enters its valuators itself.
+    Devices 1-0x7FFF.  A C character constant ported as a one-character
+    string (``qenter(KEYBD, 't')``) is its character code, as in C; qread
+    gives that code back."""
     if isinstance(val, str) and len(val) == 1:
         val = ord(val)
     v = integer("qenter", val, "value")
@@ -220,8 +223,9 @@ def setvaluator(dev, init, vmin, vmax):
 
 @glcall(immediate=True)
 def noise(dev, delta):
-    """noise(3G): a valuator's entry is queued only when it changed by at
-    least delta since its last queued entry (delta 1: every change)."""
+    """noise(3G): a valuator's report is queued only when it changed by at
+    least delta since its last queued entry (delta 1: every change); what
+    a program qenters is not filtered."""
     d = _valuator("noise", dev)
     n = _short("noise", delta, "delta")
     if n < 1:
@@ -232,7 +236,8 @@ def noise(dev, delta):
 @glcall(immediate=True)
 def tie(button, val1, val2):
     """tie(3G): while the button is queued, its entry is followed by the
-    current values of val1 then val2 (NULLDEV = none); both NULLDEV unties."""
+    current values of val1 then val2 (NULLDEV = none); both NULLDEV unties.
+    When the button changes state (the window system), not on a qenter."""
     b = _button("tie", button)
     v1 = _valuator("tie", val1, null=True)
     v2 = _valuator("tie", val2, null=True)

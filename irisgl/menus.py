@@ -81,9 +81,14 @@ def dopup(pup):
 
 def _take_release():
     """Remove the first queued RIGHTMOUSE release: the button release that
-    chooses the item belongs to dopup (dopup(3G))."""
-    q = machine.events.entries
+    chooses the item belongs to dopup (dopup(3G)), with the valuators tied
+    to the button that came with it (tie(3G): one group)."""
+    ev = machine.events
+    q = ev.entries
     for i, (dev, val) in enumerate(q):
         if dev == K.RIGHTMOUSE and val == 0:
             del q[i]
+            for v in ev.ties.get(K.RIGHTMOUSE, ()):
+                if v and i < len(q) and q[i][0] == v:
+                    del q[i]
             return

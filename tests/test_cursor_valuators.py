@@ -148,15 +148,36 @@ def test_user_devices_may_be_entered(open_window):
 
 
 def test_tie_queues_button_then_valuators_in_order(open_window):
+    """tie(3G): when the queued button changes state (the window system,
+    machine.events.device_input), its entry is followed by the valuators'
+    current values."""
     open_window()
     qreset()
     qdevice(LEFTMOUSE)
     tie(LEFTMOUSE, MOUSEX, MOUSEY)
     setvaluator(MOUSEX, 300, 0, 1279)
     setvaluator(MOUSEY, 200, 0, 1023)
-    qenter(LEFTMOUSE, 1)
+    machine.events.device_input(LEFTMOUSE, 1)
     assert [qread() for _ in range(3)] == [(LEFTMOUSE, 1), (MOUSEX, 300), (MOUSEY, 200)]
     assert qtest() == 0
+
+
+def test_qenter_of_a_tied_button_enters_that_entry_alone(open_window):
+    """qenter(3G) "takes a device number and a value and enters them": a
+    tied button brings no valuators, so a program that enters the button
+    and then its own MOUSEX, MOUSEY (buttonfly's menu choice) reads back
+    exactly those three; the button's state follows the entry."""
+    open_window()
+    qreset()
+    qdevice(LEFTMOUSE)
+    tie(LEFTMOUSE, MOUSEX, MOUSEY)
+    setvaluator(MOUSEX, 5, 0, 1279)
+    setvaluator(MOUSEY, 6, 0, 1023)
+    qenter(LEFTMOUSE, 1)
+    qenter(MOUSEX, 320)
+    qenter(MOUSEY, 256)
+    assert queue() == [(LEFTMOUSE, 1), (MOUSEX, 320), (MOUSEY, 256)]
+    assert getbutton(LEFTMOUSE) == 1
 
 
 def test_tie_one_valuator_and_untie(open_window):
@@ -165,11 +186,11 @@ def test_tie_one_valuator_and_untie(open_window):
     qdevice(RIGHTMOUSE)
     tie(RIGHTMOUSE, MOUSEY, NULLDEV)
     setvaluator(MOUSEY, 9, 0, 1023)
-    qenter(RIGHTMOUSE, 1)
+    machine.events.device_input(RIGHTMOUSE, 1)
     assert queue() == [(RIGHTMOUSE, 1), (MOUSEY, 9)]
     qreset()
     tie(RIGHTMOUSE, NULLDEV, NULLDEV)
-    qenter(RIGHTMOUSE, 0)
+    machine.events.device_input(RIGHTMOUSE, 0)
     assert queue() == [(RIGHTMOUSE, 0)]
 
 
@@ -177,8 +198,8 @@ def test_tied_button_not_queued_brings_nothing(open_window):
     open_window()
     qreset()
     tie(LEFTMOUSE, MOUSEX, MOUSEY)          # LEFTMOUSE not qdevice'd
-    qenter(LEFTMOUSE, 1)
-    assert queue() == [(LEFTMOUSE, 1)]
+    machine.events.device_input(LEFTMOUSE, 1)
+    assert queue() == [] and getbutton(LEFTMOUSE) == 1
 
 
 def test_tied_group_is_not_split_by_a_full_queue(open_window):
@@ -188,7 +209,7 @@ def test_tied_group_is_not_split_by_a_full_queue(open_window):
     tie(LEFTMOUSE, MOUSEX, MOUSEY)
     for i in range(99):
         qenter(KEYBD, 65)
-    qenter(LEFTMOUSE, 1)                    # 3 entries do not fit in 101 - 99
+    machine.events.device_input(LEFTMOUSE, 1)   # 3 entries do not fit in 101 - 99
     q = queue()
     assert len(q) == 99
     assert q[-1] == (QFULL, 0)
@@ -200,11 +221,15 @@ def test_noise_filters_small_valuator_motion(open_window):
     qreset()
     qdevice(MOUSEX)
     noise(MOUSEX, 5)
-    qenter(MOUSEX, 100)
-    qenter(MOUSEX, 103)                     # moved 3 < 5: not queued
-    qenter(MOUSEX, 106)                     # 6 from the last queued
+    ev = machine.events                     # the mouse moving (the window system)
+    ev.device_input(MOUSEX, 100)
+    ev.device_input(MOUSEX, 103)            # moved 3 < 5: not queued
+    assert getvaluator(MOUSEX) == 103       # (its value follows every change)
+    ev.device_input(MOUSEX, 106)            # 6 from the last queued
     assert queue() == [(MOUSEX, 100), (MOUSEX, 106)]
     assert getvaluator(MOUSEX) == 106
+    qenter(MOUSEX, 107)                     # what a program enters is not filtered
+    assert queue()[-1] == (MOUSEX, 107)
     with pytest.raises(GLError):
         noise(MOUSEX, 0)
 

@@ -143,6 +143,29 @@ def test_dopup_takes_the_rightmouse_release():
     assert qtest() == 0                     # the release belonged to the menu
 
 
+def test_dopup_takes_the_release_with_its_tied_valuators(open_window):
+    """RIGHTMOUSE tied to MOUSEX and MOUSEY: the window system queues the
+    release as one group (tie(3G)), and dopup takes the whole group, so no
+    stray MOUSEX/MOUSEY entries follow a menu choice; later entries stay."""
+    from irisgl import KEYBD, MOUSEX, MOUSEY, qreset, setvaluator, tie
+    from irisgl._current import machine
+    open_window()
+    qreset()                                # (winopen's INPUTCHANGE and REDRAW)
+    qdevice(RIGHTMOUSE)
+    tie(RIGHTMOUSE, MOUSEX, MOUSEY)
+    setvaluator(MOUSEX, 100, 0, 1279)
+    setvaluator(MOUSEY, 200, 0, 1023)
+    m = defpup("a|b")
+    ev = machine.events
+    ev.device_input(RIGHTMOUSE, 1)
+    ev.device_input(RIGHTMOUSE, 0)
+    qenter(KEYBD, 65)
+    assert [qread() for _ in range(3)] == [(RIGHTMOUSE, 1), (MOUSEX, 100), (MOUSEY, 200)]
+    M.script("1")
+    assert dopup(m) == 1
+    assert list(ev.entries) == [(KEYBD, 65)]
+
+
 def test_not_recorded_in_objects(open_window):
     open_window()
     makeobj(3)

@@ -10,8 +10,10 @@ catches it, saves what the program drew.
 Device numbers follow the partition of qenter(3G): SGI buttons 0x0001-0x00FF
 and 0x0F00-0x0FFF, valuators 0x0100-0x01FF, pseudo devices 0x0200-0x02FF;
 0x1000-0x7FFF are the program's own devices (qenter only); 0x8000 and up
-cannot be used.  A button tied to valuators (tie(3G)) queues its entry and
-then the valuators' current values as one group.
+cannot be used.  ``qenter`` enters exactly its entry; a device that changes
+state (device_input, the window system) is held in its setvaluator range,
+filtered by noise, and a button tied to valuators (tie(3G)) queues its
+entry and then the valuators' current values as one group.
 """
 import os
 from collections import deque
@@ -81,40 +83,45 @@ class EventQueue:
 
     # -- entering events ----------------------------------------------------
     def enter(self, dev, val):
-        """Append an entry (qenter, or the window system); the device state
-        follows what is entered.  A tied button brings its valuators'
-        current values right after it, as one group; a valuator with a
-        noise threshold is queued only when it moved at least that much."""
-        if is_button(dev):
-            self.buttons[dev] = 1 if val else 0
-        elif is_valuator(dev):
-            self.valuators[dev] = val
+        """qenter(3G): append exactly this entry ("takes a device number and
+        a value and enters them"); the device's state follows it [S].  No
+        tied valuators and no noise filter: those belong to a device that
+        changes state (tie(3G), noise(3G)), device_input."""
+        self._follow(dev, val)
+        self._append([(dev, val)])
+
+    def device_input(self, dev, val):
+        """A device changed (the window system: display/tkwindow.py,
+        notebook.py, the runner's menu clicks): its state always, an entry
+        when it is queued.  A valuator reports a value within its range
+        (setvaluator(3G); the mouse: the screen), so a drag past the range
+        reads its edge, and is queued only when it moved at least its noise
+        threshold since its last queued entry (noise(3G)).  A queued button
+        tied to valuators brings their current values right after it, as
+        one group (tie(3G))."""
+        if dev in self.ranges:
+            lo, hi = self.ranges[dev]
+            val = min(max(val, lo), hi)
+        self._follow(dev, val)
+        if dev not in self.queued:
+            return
+        if is_valuator(dev):
             delta = self.noise.get(dev, 1)
             last = self.last_queued.get(dev)
             if delta > 1 and last is not None and abs(val - last) < delta:
                 return
             self.last_queued[dev] = val
         group = [(dev, val)]
-        if dev in self.ties and dev in self.queued:
-            for v in self.ties[dev]:
-                if v:
-                    group.append((v, self.valuator(v)))
+        for v in self.ties.get(dev, ()):
+            if v:
+                group.append((v, self.valuator(v)))
         self._append(group)
 
-    def device_input(self, dev, val):
-        """A device changed in a real window (display/tkwindow.py,
-        notebook.py): its state always, an entry when it is queued.  A
-        valuator reports a value within its range (setvaluator(3G); the
-        mouse: the screen), so a drag past the range reads its edge."""
-        if dev in self.ranges:
-            lo, hi = self.ranges[dev]
-            val = min(max(val, lo), hi)
-        if dev in self.queued:
-            self.enter(dev, val)
+    def _follow(self, dev, val):
+        if is_button(dev):
+            self.buttons[dev] = 1 if val else 0
         elif is_valuator(dev):
             self.valuators[dev] = val
-        elif is_button(dev):
-            self.buttons[dev] = 1 if val else 0
 
     def _append(self, group):
         """Queue a group of entries whole, or (no room) drop it and queue QFULL."""

@@ -72,8 +72,8 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         ev = machine.events
         if (menus.pending(machine) and rightmouse in ev.queued
                 and not any(d == rightmouse for d, _ in ev.entries)):
-            ev.enter(rightmouse, 1)
-            ev.enter(rightmouse, 0)
+            ev.device_input(rightmouse, 1)       # as the window system: tied valuators too
+            ev.device_input(rightmouse, 0)
             return True
         return False
 

@@ -82,13 +82,15 @@ def tied_values():
 
 
 def replay_drag(x0, y0, x1, y1):
-    """Enter a left-button drag as the window system would."""
-    setvaluator(MOUSEX, x0, 0, XMAXSCREEN)
-    setvaluator(MOUSEY, y0, 0, YMAXSCREEN)
-    qenter(LEFTMOUSE, 1)
-    setvaluator(MOUSEX, x1, 0, XMAXSCREEN)
-    setvaluator(MOUSEY, y1, 0, YMAXSCREEN)
-    qenter(LEFTMOUSE, 0)
+    """Enter a left-button drag as the window system queues it: each button
+    entry followed by its tied MOUSEX and MOUSEY (qenter enters exactly one
+    entry, so the program enters all three)."""
+    for button, x, y in ((1, x0, y0), (0, x1, y1)):
+        setvaluator(MOUSEX, x, 0, XMAXSCREEN)
+        setvaluator(MOUSEY, y, 0, YMAXSCREEN)
+        qenter(LEFTMOUSE, button)
+        qenter(MOUSEX, x)
+        qenter(MOUSEY, y)
 
 
 def main():
