@@ -2436,8 +2436,9 @@ Any other op replaces blending ([S])."""
 def lookat(vx: Coord, vy: Coord, vz: Coord, px: Coord, py: Coord, pz: Coord, twist: Angle) -> None:
     """C: void lookat(Coord vx, Coord vy, Coord vz, Coord px, Coord py, Coord pz, Angle twist)
 
-lookat(3G): eye at v looking at p, twist in tenths of degrees.
-eye == reference point raises GLError (docs/semantics.md §2)."""
+lookat(3G): eye at v looking at p, twist in tenths of degrees (an
+Angle: _current.angle).  eye == reference point raises GLError
+(docs/semantics.md §2)."""
 
 def lrectread(x1: Screencoord, y1: Screencoord, x2: Screencoord, y2: Screencoord, parray: ArrayLike | None = None) -> Any:
     """C: long lrectread(Screencoord x1, Screencoord y1, Screencoord x2, Screencoord y2, unsigned long parray[])
@@ -2919,7 +2920,8 @@ def polarview(dist: Coord, azim: Angle, inc: Angle, twist: Angle) -> None:
     """C: void polarview(Coord dist, Angle azim, Angle inc, Angle twist)
 
 polarview(3G): translate(0,0,-dist) rotate(-twist,'z')
-rotate(-inc,'x') rotate(-azim,'z')."""
+rotate(-inc,'x') rotate(-azim,'z'); azim, inc and twist are Angles
+(_current.angle)."""
 
 def polf(n: int, parray: ArrayLike) -> None:
     """C: void polf(long n, Coord parray[][3])
@@ -3295,7 +3297,7 @@ rot(3G): float degrees about 'x', 'y' or 'z' (right-hand rule)."""
 def rotate(a: Angle, ax: str) -> None:
     """C: void rotate(Angle a, char axis)
 
-rotate(3G): Angle in tenths of degrees."""
+rotate(3G): Angle in tenths of degrees (a C short: _current.angle)."""
 
 def rpatch(gx: _MatrixLike, gy: _MatrixLike, gz: _MatrixLike, gw: _MatrixLike) -> None:
     """C: void rpatch(Matrix gx, Matrix gy, Matrix gz, Matrix gw)

@@ -186,6 +186,20 @@ def integer(call, x, what="argument"):
     return int(f)
 
 
+def angle(call, x, what="angle"):
+    """An ``Angle`` argument (a C short, tenths of degrees): a float is
+    truncated toward zero and the value reduced to 16 bits, two's complement,
+    as C converts it for the parameter (``rotate(900.7, 'z')`` turns 90
+    degrees; ``rotate(40000, 'z')`` turns -25536 tenths).  [S] NaN and
+    infinity have no C value: they pass as they are, so the matrix they make
+    drops the primitives drawn through it with a VGXWarning."""
+    f = num(call, x, what)
+    if not math.isfinite(f):
+        return f
+    t = int(x) if isinstance(x, (int, np.integer)) else int(f)
+    return ((t + 0x8000) & 0xFFFF) - 0x8000
+
+
 def token(call, x, allowed, what="token"):
     """One of the named constants in ``allowed`` (a {value: name} dict)."""
     v = integer(call, x, what)

@@ -12,7 +12,7 @@ from vgx_emulator.errors import fail, warn
 from vgx_emulator.geometry import stack as S
 
 from . import constants as K
-from ._current import axis, glcall, integer, machine, num, screen_z, win
+from ._current import angle, axis, glcall, integer, machine, num, screen_z, win
 
 __all__ = ["mmode", "getmmode", "loadmatrix", "multmatrix", "getmatrix", "pushmatrix",
            "popmatrix", "translate", "scale", "rot", "rotate", "perspective", "ortho",
@@ -157,8 +157,8 @@ def rot(a, ax):
 
 @glcall
 def rotate(a, ax):
-    """rotate(3G): Angle in tenths of degrees."""
-    _premultiply("rotate", S.rotation(num("rotate", a, "angle") / 10.0, axis("rotate", ax)))
+    """rotate(3G): Angle in tenths of degrees (a C short: _current.angle)."""
+    _premultiply("rotate", S.rotation(angle("rotate", a) / 10.0, axis("rotate", ax)))
 
 
 def _load_projection(call, m):
@@ -174,7 +174,7 @@ def _load_projection(call, m):
 def perspective(fovy, aspect, near, far):
     """perspective(3G): fovy in tenths of degrees (> 2 and < 1800); loads
     the projection (MSINGLE: the top of the single stack)."""
-    fovy = num("perspective", fovy, "fovy")
+    fovy = angle("perspective", fovy, "fovy")
     aspect = num("perspective", aspect, "aspect")
     near = num("perspective", near, "near")
     far = num("perspective", far, "far")
@@ -223,9 +223,10 @@ def window(left, right, bottom, top, near, far):
 
 @glcall
 def lookat(vx, vy, vz, px, py, pz, twist):
-    """lookat(3G): eye at v looking at p, twist in tenths of degrees.
-    eye == reference point raises GLError (docs/semantics.md §2)."""
-    v = [num("lookat", a) for a in (vx, vy, vz, px, py, pz, twist)]
+    """lookat(3G): eye at v looking at p, twist in tenths of degrees (an
+    Angle: _current.angle).  eye == reference point raises GLError
+    (docs/semantics.md §2)."""
+    v = [num("lookat", a) for a in (vx, vy, vz, px, py, pz)] + [angle("lookat", twist, "twist")]
     if not all(math.isfinite(a) for a in v):
         fail("lookat", "non-finite argument", "finite coordinates and twist")
     if v[0:3] == v[3:6]:
@@ -237,9 +238,10 @@ def lookat(vx, vy, vz, px, py, pz, twist):
 @glcall
 def polarview(dist, azim, inc, twist):
     """polarview(3G): translate(0,0,-dist) rotate(-twist,'z')
-    rotate(-inc,'x') rotate(-azim,'z')."""
-    _premultiply("polarview", S.polarview(num("polarview", dist), num("polarview", azim),
-                                          num("polarview", inc), num("polarview", twist)))
+    rotate(-inc,'x') rotate(-azim,'z'); azim, inc and twist are Angles
+    (_current.angle)."""
+    _premultiply("polarview", S.polarview(num("polarview", dist), angle("polarview", azim),
+                                          angle("polarview", inc), angle("polarview", twist)))
 
 
 # -- viewport ----------------------------------------------------------------

@@ -103,11 +103,40 @@ def test_rot_uppercase_axis(win):
     assert_matrix([[0, -1, 0, 0], [1, 0, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]])
 
 
-def test_rotate_fractional_angle_not_rounded(win):
-    rotate(1.5, "z")           # 0.15 degrees, not 0.1 or 0.2
-    a = math.radians(0.15)
-    assert_matrix([[math.cos(a), math.sin(a), 0, 0], [-math.sin(a), math.cos(a), 0, 0],
-                   [0, 0, 1, 0], [0, 0, 0, 1]], atol=1e-7)
+def _z_rotation(tenths):
+    a = math.radians(tenths / 10.0)
+    return [[math.cos(a), math.sin(a), 0, 0], [-math.sin(a), math.cos(a), 0, 0],
+            [0, 0, 1, 0], [0, 0, 0, 1]]
+
+
+@pytest.mark.parametrize("given, tenths", [(1.5, 1), (900.7, 900), (-900.7, -900),
+                                           (np.float32(450.9), 450), (40000, 40000 - 65536),
+                                           (-32769, 32767)])
+def test_rotate_takes_a_c_short_angle(win, given, tenths):
+    """rotate(3G)'s Angle is a C short: a float is truncated toward zero
+    (a port of ``float a; rotate(a, 'z')``) and a value past the short's
+    range wraps as C converts it."""
+    rotate(given, "z")
+    assert_matrix(_z_rotation(tenths), atol=1e-7)
+
+
+def test_other_angle_arguments_are_c_shorts_too(win):
+    """perspective's fovy, lookat's twist and polarview's azim, inc and twist
+    are Angles as well: the same matrices as with the truncated values."""
+    mmode(MPROJECTION)
+    perspective(450.9, 1.0, 1.0, 10.0)
+    a = getmatrix()
+    perspective(450, 1.0, 1.0, 10.0)
+    assert np.array_equal(a, getmatrix())
+    mmode(MVIEWING)
+    for call, real, whole in ((lookat, (0, 0, 5, 0, 0, 0, 900.9), (0, 0, 5, 0, 0, 0, 900)),
+                              (polarview, (5, 450.5, 300.2, -10.7), (5, 450, 300, -10))):
+        loadmatrix(np.eye(4))
+        call(*real)
+        a = getmatrix()
+        loadmatrix(np.eye(4))
+        call(*whole)
+        assert np.array_equal(a, getmatrix())
 
 
 def test_translate_then_rotate_rotates_vertex_first(win):
