@@ -154,3 +154,46 @@ def test_mp4_has_one_frame_per_program_frame(tmp_path):
         err = np.abs(g[:f.shape[0], :f.shape[1]].astype(int) - f.astype(int)).mean()
         assert err < 6
     assert np.abs(got[0].astype(int) - got[2].astype(int)).mean() > 0.5   # the light moved
+
+
+RESIZING = """\
+from irisgl import *
+prefsize(20, 10); winopen("grow"); RGBmode(); doublebuffer(); gconfig()
+cpack(0xFF0000FF); clear(); swapbuffers()                  # 20 x 10, red
+winposition(0, 39, 0, 29); reshapeviewport()
+cpack(0xFFFF0000); clear(); swapbuffers()                  # 40 x 30, blue
+winposition(0, 9, 0, 4); reshapeviewport()
+cpack(0xFF00FF00); clear(); swapbuffers()                  # 10 x 5, green
+"""
+
+
+@pytest.mark.parametrize("suffix", [".gif", ".mp4"])
+def test_a_window_that_changes_size_is_animated_whole(tmp_path, suffix):
+    """Frames of several sizes (winposition between frames): each is placed
+    at the top left of a canvas as large as the largest, none cropped (the
+    GIF kept the first frame's size; the MP4 cropped a growing window and
+    failed on a shrinking one)."""
+    if suffix == ".mp4":
+        imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    prog = tmp_path / "grow.py"
+    prog.write_text(RESIZING)
+    frames = []
+    run_program(prog, 3, collect=frames)
+    assert [f.shape for f in frames] == [(10, 20, 3), (30, 40, 3), (5, 10, 3)]
+    path = save_animation(tmp_path / ("a" + suffix), frames)
+    if suffix == ".gif":
+        got = _gif_frames(path)
+        tol = 0
+    else:
+        reader = imageio_ffmpeg.read_frames(str(path))
+        w, h = reader.__next__()["size"]
+        got = [np.frombuffer(b, np.uint8).reshape(h, w, 3) for b in reader]
+        tol = 40                                   # H.264 blurs colour edges
+    assert len(got) == 3 and all(g.shape == (30, 40, 3) for g in got)
+    for g, f in zip(got, frames):
+        h, w = f.shape[:2]
+        inner = g[1:h - 1, 1:w - 1].astype(int)
+        assert np.abs(inner - f[1:h - 1, 1:w - 1]).max() <= tol      # the frame, whole
+        outside = g.copy()
+        outside[:h + 1, :w + 1] = 0
+        assert outside.max() <= tol                                 # black around it

@@ -5,7 +5,8 @@ A frame is shown for ``every / fps`` seconds, so saving every K-th frame
 keeps the program's pace (the frame points of a headless run are taken at
 ``fps`` a second, 30 by default).  GIF is written with Pillow, each frame
 with its own 256-colour palette, looping forever; consecutive identical
-frames become one longer frame (same timing).  MP4 needs the optional extra
+frames become one longer frame (same timing).  Frames of a window that
+changed size are placed at the top left of a canvas of the largest.  MP4 needs the optional extra
 ``pip install 'iris-vgx[video]'`` (imageio-ffmpeg, its own ffmpeg binary);
 without it writing an .mp4 raises AnimationError saying so.
 """
@@ -25,9 +26,20 @@ class AnimationError(RuntimeError):
 
 
 def _check(frames):
+    """The frames as (h, w, 3) uint8 arrays of one size.  A window that
+    changed size during the run (winposition, a full-screen toggle) gives
+    frames of several sizes: each is placed at the top left of a black
+    canvas as large as the largest, so no frame is cropped."""
     frames = [np.asarray(f, np.uint8) for f in frames]
     if not frames:
         raise AnimationError("no frame was drawn: nothing to animate")
+    h = max(f.shape[0] for f in frames)
+    w = max(f.shape[1] for f in frames)
+    for i, f in enumerate(frames):
+        if f.shape[:2] != (h, w):
+            canvas = np.zeros((h, w, 3), np.uint8)
+            canvas[:f.shape[0], :f.shape[1]] = f
+            frames[i] = canvas
     return frames
 
 
@@ -63,7 +75,7 @@ def write_mp4(path, frames, fps=30.0, every=1):
     gen.send(None)
     for f in frames:
         pad = np.zeros((H, W, 3), np.uint8)
-        pad[:h, :w] = f[:H, :W]
+        pad[:h, :w] = f
         gen.send(np.ascontiguousarray(pad))
     gen.close()
     return path
