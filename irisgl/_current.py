@@ -196,8 +196,14 @@ def angle(call, x, what="angle"):
     f = num(call, x, what)
     if not math.isfinite(f):
         return f
-    t = int(x) if isinstance(x, (int, np.integer)) else int(f)
-    return ((t + 0x8000) & 0xFFFF) - 0x8000
+    return signed(int(x) if isinstance(x, (int, np.integer)) else int(f), 16)
+
+
+def signed(v, bits):
+    """The integer v reduced to ``bits`` bits, two's complement: what C gives
+    when it converts v to a signed short (16) or long (32) parameter."""
+    half = 1 << (bits - 1)
+    return (v + half) % (half << 1) - half
 
 
 def token(call, x, allowed, what="token"):
@@ -266,8 +272,7 @@ def screen_z(call, v, what):
     ``0xff800000`` is -0x800000, GD_ZMIN (docs/semantics.md §1), then
     clamped to the VGX range GD_ZMIN..GD_ZMAX."""
     from vgx_emulator.framebuffer import ZMAX, ZMIN
-    z = (integer(call, v, what) + 0x80000000) % 0x100000000 - 0x80000000
-    return min(max(z, ZMIN), ZMAX)
+    return min(max(signed(integer(call, v, what), 32), ZMIN), ZMAX)
 
 
 def axis(call, a):
