@@ -24,16 +24,17 @@ __all__ = ["texdef2d", "tevdef", "tevbind", "texbind", "texgen", "scrsubdivide"]
 _NO = NOT_GIVEN         # "argument not given": the checked path reports the arity
 
 
-def _props(call, np_count, props, table):
-    """Token list -> {token: values}; ends at TX_NULL / TV_NULL (0)."""
+def _props(call, props, table):
+    """Token list -> {token: values}; ends at TX_NULL / TV_NULL (0).  The
+    call's ``np`` is not used to cut the list: texdef(3G) and tevdef(3G) say
+    it only makes the call more efficient over a network connection (and is
+    ignored when 0), and programs passed np = 1 with a longer list."""
     if props is None:
         return {}
     try:
         vals = [float(v) for v in props]
     except (TypeError, ValueError):
         fail(call, "props is not a list of numbers", "tokens and values ending with 0")
-    if np_count:
-        vals = vals[:np_count]
     out = {}
     i = 0
     while i < len(vals) and vals[i] != 0.0:
@@ -63,7 +64,8 @@ def texdef2d(index, nc, width, height, image, np, props):
         fail("texdef2d", f"{nc} components", "1, 2, 3 or 4")
     if not (1 <= w <= 4096 and 1 <= h <= 4096):
         fail("texdef2d", f"size {w}x{h}", "1..4096 texels each way")
-    p = _props("texdef2d", integer("texdef2d", np, "np"), props, T.TEX_PROPS)
+    integer("texdef2d", np, "np")
+    p = _props("texdef2d", props, T.TEX_PROPS)
     p = {k: int(v[0]) if len(v) == 1 else v for k, v in p.items()}
     for key, allowed in ((T.TX_MINFILTER, T.MIN_FILTERS), (T.TX_MAGFILTER, T.MAG_FILTERS)):
         if key in p and p[key] not in allowed:
@@ -89,7 +91,8 @@ def tevdef(index, np, props):
         fail("tevdef", f"index {i}", "index 0 is the null environment; use 1 and up")
     table = {T.TV_MODULATE: 0, T.TV_BLEND: 0, T.TV_DECAL: 0, T.TV_ALPHA: 0, T.TV_COLOR: 4,
              0x300: 1}
-    p = _props("tevdef", integer("tevdef", np, "np"), props, table)
+    integer("tevdef", np, "np")
+    p = _props("tevdef", props, table)
     mode = T.TV_MODULATE
     for m in (T.TV_DECAL, T.TV_BLEND, T.TV_ALPHA, T.TV_MODULATE):
         if m in p:

@@ -1160,3 +1160,20 @@ def test_texture_coordinates_in_an_object_compile_and_replay(open_window):
 def _machine_objects():
     import vgx_emulator
     return vgx_emulator.machine().objects
+
+
+def test_property_lists_are_read_to_their_null_whatever_np(open_window):
+    """texdef(3G), tevdef(3G): np only speeds a network connection and is
+    ignored when 0; the list is read up to TX_NULL / TV_NULL, so a program
+    that passed np = 1 with a longer list (SGI's nurbtex) defines the
+    same texture and environment as with np = 0."""
+    from irisgl._current import machine
+    open_window(4, 4, rgb=True)
+    props = [TX_MINFILTER, TX_POINT, TX_MAGFILTER, TX_POINT, TX_NULL]
+    texdef2d(1, 1, 2, 1, [0x00FF00FF], 1, props)
+    texdef2d(2, 1, 2, 1, [0x00FF00FF], 0, props)
+    a, b = machine.textures[1], machine.textures[2]
+    assert (a.minfilter, a.magfilter) == (b.minfilter, b.magfilter) == (TX_POINT, TX_POINT)
+    tevdef(1, 1, [TV_BLEND, TV_COLOR, 0.5, 0.25, 0.125, 1.0, TV_NULL])
+    tevdef(2, 0, [TV_BLEND, TV_COLOR, 0.5, 0.25, 0.125, 1.0, TV_NULL])
+    assert vars(machine.environments[1]) == vars(machine.environments[2])
