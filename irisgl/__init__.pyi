@@ -2403,7 +2403,9 @@ def lmdef(deftype: int, index: int, np: int, props: ArrayLike) -> None:
 lmdef(3G): define or change material, light or light-model ``index``.
 
 ``props``: tokens each followed by their floats, ending with LMNULL;
-``np`` counts the floats including LMNULL (0: read to LMNULL).  Only the
+``np`` counts the floats including LMNULL, a hint only: the list is read
+to LMNULL whatever it says (lmdef(3G): 0 is ignored, a correct np only
+speeds a network connection).  Only the
 listed properties change; ``None`` (or 0, C's NULL) or an empty list
 (LMNULL first) restores the defaults.  Index 0 is the null definition and cannot be
 redefined."""

@@ -170,6 +170,8 @@ def test_lmdef_np_larger_than_the_list_reads_up_to_lmnull(open_window):
         endpolygon()
         return int(lrectread(4, 4, 4, 4)[0, 0]) & 0xFF
     assert red_of(4 * 9) == red_of(0) == round(0.5 * 255)
+    # too small (showring.c: 11 for a list of 15): a hint too, read to LMNULL
+    assert red_of(3) == red_of(1) == round(0.5 * 255)
 
 
 def test_lmdef_np_past_a_list_without_lmnull_is_still_an_error(open_window):

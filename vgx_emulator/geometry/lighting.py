@@ -66,9 +66,13 @@ def _is_number(v):
 def parse_properties(call, deftype, np_count, props):
     """Read an lmdef property list up to LMNULL; returns {token: values}.
 
-    ``np_count`` is the C ``np`` (floats including LMNULL; 0 = read to
-    LMNULL).  Raises GLError for an unknown token, a short list or a missing
-    LMNULL; nothing is changed by the caller in that case.
+    ``np_count`` is the C ``np``, the number of floats including LMNULL.
+    lmdef(3G) makes it a hint ("if np is zero, it is ignored"; a correct np
+    only makes a network connection faster), so the list is read to LMNULL
+    whatever np says: SGI's programs passed np too small (11 for a list of
+    15) and too large (sizeof(array), in bytes).  A negative np is refused.
+    Raises GLError for an unknown token, a short list or a missing LMNULL;
+    nothing is changed by the caller in that case.
     """
     table = PROPERTIES[deftype]
     try:
@@ -77,13 +81,8 @@ def parse_properties(call, deftype, np_count, props):
         bad = next(v for v in props if not _is_number(v))
         fail(call, f"property list holds {bad!r}, not a number",
              "tokens and their values as numbers, ending with LMNULL")
-    if np_count:
-        if np_count < 1:
-            fail(call, f"np = {np_count} but the property list has {len(vals)} floats",
-                 "np counts the floats including LMNULL, or is 0")
-        # an np past the end of the list (C's lmdef(..., sizeof(array), array)
-        # counts bytes) still stops at LMNULL, as the C library's reading does
-        vals = vals[:np_count]
+    if np_count < 0:
+        fail(call, f"np = {np_count}", "np counts the floats including LMNULL, or is 0")
     out = {}
     i = 0
     while True:
