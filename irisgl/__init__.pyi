@@ -1310,7 +1310,10 @@ bgntmesh(3G): start a tmesh primitive; its vertices follow."""
 def bgntrim() -> None:
     """C: void bgntrim(void)
 
-bgntrim(3G): start a trimming loop (pwlcurve/nurbscurve pieces, head to tail)."""
+bgntrim(3G): start a trimming loop (pwlcurve/nurbscurve pieces, head to tail).
+[S] Loops may come before or after the surface's nurbssurface calls, in
+any order until endsurface (bgnsurface(3G) lists no order; SGI's sgiflag
+trims first): they live in parameter space, apart from the shape."""
 
 def blankscreen(b: Boolean) -> None:
     """C: void blankscreen(Boolean b)
@@ -2696,7 +2699,7 @@ def nurbssurface(scount: int, sknot: ArrayLike, tcount: int, tknot: ArrayLike, s
 
 nurbssurface(3G): the surface's shape (N_V3D/N_V3DR, exactly one) and
 optionally its colours (N_C4D/N_C4DR) and texture coordinates
-(N_T2D/N_T2DR), before any trimming loop."""
+(N_T2D/N_T2DR), before or after the trimming loops."""
 
 def objdelete(t1: Tag, t2: Tag) -> None:
     """C: void objdelete(Tag t1, Tag t2)

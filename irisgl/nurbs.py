@@ -237,14 +237,12 @@ def nurbssurface(scount, sknot, tcount, tknot, s_offset, t_offset, ctlarray,
                  sorder, torder, type):
     """nurbssurface(3G): the surface's shape (N_V3D/N_V3DR, exactly one) and
     optionally its colours (N_C4D/N_C4DR) and texture coordinates
-    (N_T2D/N_T2DR), before any trimming loop."""
+    (N_T2D/N_T2DR), before or after the trimming loops."""
     w, s, o = _open("nurbssurface", ("surface",))
     t = integer("nurbssurface", type, "type")
     if t not in _SURF:
         fail("nurbssurface", f"type {type!r}", "allowed: " + ", ".join(_SURF.values()))
     role = _ROLE[t]
-    if o["loops"]:
-        fail("nurbssurface", "after a trimming loop", "nurbssurface calls come before bgntrim")
     if o[role] is not None:
         fail("nurbssurface", f"a second {_SURF[t]} surface",
              "one geometry, one colour and one texture surface per bgnsurface")
@@ -260,10 +258,11 @@ def nurbssurface(scount, sknot, tcount, tknot, s_offset, t_offset, ctlarray,
 
 @glcall
 def bgntrim():
-    """bgntrim(3G): start a trimming loop (pwlcurve/nurbscurve pieces, head to tail)."""
+    """bgntrim(3G): start a trimming loop (pwlcurve/nurbscurve pieces, head to tail).
+    [S] Loops may come before or after the surface's nurbssurface calls, in
+    any order until endsurface (bgnsurface(3G) lists no order; SGI's sgiflag
+    trims first): they live in parameter space, apart from the shape."""
     w, s, o = _open("bgntrim", ("surface",))
-    if o["geom"] is None:
-        fail("bgntrim", "before the surface's nurbssurface", "define the surface first")
     s["open"] = {"kind": "trim", "surface": o, "pieces": []}
 
 
