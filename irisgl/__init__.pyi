@@ -3027,7 +3027,11 @@ pushviewport saved."""
 def prefposition(x1: int, x2: int, y1: int, y2: int) -> None:
     """C: void prefposition(long x1, long x2, long y1, long y2)
 
-prefposition(3G): screen rectangle x1..x2, y1..y2 of the next window."""
+prefposition(3G): screen rectangle x1..x2, y1..y2 of the next window.
+(x1, y1) and (x2, y2) are "one corner" and "the opposite corner", in
+either order; the rules are winposition's (_screen_rect), so SGI's
+``prefposition(0, getgdesc(GD_XPMAX), 0, getgdesc(GD_YPMAX))``, one
+pixel past the screen, opens a 1281 x 1025 window as it did."""
 
 def prefsize(x: int, y: int) -> None:
     """C: void prefsize(long x, long y)

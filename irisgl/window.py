@@ -75,13 +75,15 @@ def prefsize(x, y):
 
 @glcall
 def prefposition(x1, x2, y1, y2):
-    """prefposition(3G): screen rectangle x1..x2, y1..y2 of the next window."""
-    x1, x2, y1, y2 = (integer("prefposition", v) for v in (x1, x2, y1, y2))
-    if not (0 <= x1 <= x2 < config.SCREEN_WIDTH and 0 <= y1 <= y2 < config.SCREEN_HEIGHT):
-        fail("prefposition", f"rectangle ({x1}, {x2}, {y1}, {y2}) is not on the screen",
-             "0 <= x1 <= x2 <= 1279, 0 <= y1 <= y2 <= 1023")
-    machine.pref["origin"] = (x1, y1)
-    machine.pref["size"] = (x2 - x1 + 1, y2 - y1 + 1)
+    """prefposition(3G): screen rectangle x1..x2, y1..y2 of the next window.
+    (x1, y1) and (x2, y2) are "one corner" and "the opposite corner", in
+    either order; the rules are winposition's (_screen_rect), so SGI's
+    ``prefposition(0, getgdesc(GD_XPMAX), 0, getgdesc(GD_YPMAX))``, one
+    pixel past the screen, opens a 1281 x 1025 window as it did."""
+    xa, xb, ya, yb = _screen_rect("prefposition", x1, x2, y1, y2)
+    _on_screen_plane("prefposition", xa, xb, ya, yb)
+    machine.pref["origin"] = (xa, ya)
+    machine.pref["size"] = (xb - xa + 1, yb - ya + 1)
 
 
 @glcall(immediate=True, status=HEADLESS, why="the user reshapes windows only on a display")
@@ -487,16 +489,23 @@ def winposition(x1, x2, y1, y2):
     relative to its parent's origin).  The banks are rebuilt at the new
     size and REDRAW is queued."""
     w = win("winposition")
-    x1, x2, y1, y2 = (integer("winposition", v) for v in (x1, x2, y1, y2))
-    xa, xb, ya, yb = min(x1, x2), max(x1, x2), min(y1, y2), max(y1, y2)
+    xa, xb, ya, yb = _screen_rect("winposition", x1, x2, y1, y2)
     if w.parent is not None and w.parent in machine.windows:
         p = _top(w)
         xa, xb, ya, yb = xa + p.origin[0], xb + p.origin[0], ya + p.origin[1], yb + p.origin[1]
+    _on_screen_plane("winposition", xa, xb, ya, yb)
+    _reshape(w, xa, ya, xb - xa + 1, yb - ya + 1)
+
+
+def _screen_rect(call, x1, x2, y1, y2):
+    """A window rectangle given by two opposite corners in either order:
+    (xmin, xmax, ymin, ymax); at most twice the screen each way."""
+    x1, x2, y1, y2 = (integer(call, v) for v in (x1, x2, y1, y2))
+    xa, xb, ya, yb = min(x1, x2), max(x1, x2), min(y1, y2), max(y1, y2)
     wd, ht = xb - xa + 1, yb - ya + 1
     if wd > 2 * config.SCREEN_WIDTH or ht > 2 * config.SCREEN_HEIGHT:
-        fail("winposition", f"a {wd}x{ht} window", "at most twice the screen each way")
-    _on_screen_plane("winposition", xa, xb, ya, yb)
-    _reshape(w, xa, ya, wd, ht)
+        fail(call, f"a {wd}x{ht} window", "at most twice the screen each way")
+    return xa, xb, ya, yb
 
 
 def _on_screen_plane(call, *coords):

@@ -44,6 +44,21 @@ def test_prefposition_sets_size_and_origin():
     assert getorigin() == (100, 200)
 
 
+def test_prefposition_takes_corners_in_either_order_and_past_the_screen():
+    """prefposition(3G): (x1, y1) and (x2, y2) are opposite corners, in
+    either order, and no error is listed: SGI's tpbig passes GD_XPMAX and
+    GD_YPMAX (1280, 1024), a window one pixel wider and taller than the
+    screen, as winposition allows; more than twice the screen is an error."""
+    prefposition(300, 100, 400, 200)
+    winopen("x")
+    assert getsize() == (201, 201) and getorigin() == (100, 200)
+    prefposition(0, getgdesc(GD_XPMAX), 0, getgdesc(GD_YPMAX))
+    winopen("y")
+    assert getsize() == (1281, 1025) and getorigin() == (0, 0)
+    with pytest.raises(GLError, match="^prefposition: a 2600x10 window"):
+        prefposition(0, 2599, 0, 9)
+
+
 def test_pref_applies_to_next_window_only():
     prefposition(100, 163, 200, 247)
     winopen("x")
