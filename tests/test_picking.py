@@ -281,6 +281,26 @@ def test_objects_carry_the_names(open_window):
     assert _records(n, buf) == [[2]]
 
 
+def test_initnames_leaves_the_slot_loadname_replaces(open_window):
+    """initnames then two pushes (SGI's tutorial programs read the names at
+    buffer[2] and buffer[3]) records (0, a, b); initnames then loadname
+    records the loaded name alone, as the Programming Guide's examples."""
+    open_window(100, 100, pixels=True)
+    _cursor(25, 25)
+    buf = np.zeros(12, np.int16)
+    pick(buf, 12)
+    ortho2(-0.5, 99.5, -0.5, 99.5)
+    initnames()
+    pushname(1)
+    pushname(7)
+    rectf(20, 20, 30, 30)
+    initnames()
+    loadname(3)
+    rectf(20, 20, 30, 30)
+    assert endpick(buf) == 2
+    assert list(buf[:6]) == [3, 0, 1, 7, 1, 3]
+
+
 # -- name stack outside the modes, errors -----------------------------------------
 def test_name_calls_are_ignored_outside_pick_and_select(open_window):
     open_window(100, 100, pixels=True)

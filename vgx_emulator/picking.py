@@ -172,7 +172,14 @@ class Session:
 
     # -- the name stack ---------------------------------------------------
     def initnames(self):
-        self.names = []
+        """initnames(3G): the stack holds one name, 0, the slot loadname
+        replaces.  [S] The Programming Guide calls a push before the first
+        loadname unpredictable; SGI's own tutorial programs (gouraud,
+        curve) do initnames(); pushname(a); pushname(b) and read a and b
+        as the second and third names of the hit, which this layout gives.
+        Programs that call loadname first see no difference; a hit before
+        any loadname records the name 0."""
+        self.names = [0]
 
     def loadname(self, name):
         if self.names:
