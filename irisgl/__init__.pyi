@@ -2675,7 +2675,8 @@ def noise(dev: Device, delta: int) -> None:
 
 noise(3G): a valuator's report is queued only when it changed by at
 least delta since its last queued entry (delta 1: every change); what
-a program qenters is not filtered."""
+a program qenters is not filtered.  For a timer (TIMER0..TIMER3) delta
+is its period in ticks of getgdesc(GD_TIMERHZ) (default 10000)."""
 
 def noport() -> None:
     """C: void noport(void)

@@ -225,12 +225,15 @@ def setvaluator(dev, init, vmin, vmax):
 def noise(dev, delta):
     """noise(3G): a valuator's report is queued only when it changed by at
     least delta since its last queued entry (delta 1: every change); what
-    a program qenters is not filtered."""
-    d = _valuator("noise", dev)
+    a program qenters is not filtered.  For a timer (TIMER0..TIMER3) delta
+    is its period in ticks of getgdesc(GD_TIMERHZ) (default 10000)."""
+    d = integer("noise", dev, "valuator")
+    if not E.is_timer(d):
+        d = _valuator("noise", dev)
     n = _short("noise", delta, "delta")
     if n < 1:
         fail("noise", f"delta {n}", "delta >= 1")
-    machine.events.noise[d] = n
+    machine.events.set_noise(d, n)
 
 
 @glcall(immediate=True)

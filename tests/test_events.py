@@ -281,3 +281,48 @@ def test_vgx_run_cli_rejects_missing_program(tmp_path):
     r = subprocess.run(_vgx_run_cmd() + [str(tmp_path / "nope.py")], capture_output=True,
                        text=True, timeout=120, cwd=tmp_path)
     assert r.returncode != 0
+
+
+# -- TIMER0..TIMER3 (noise(3G), getgdesc(GD_TIMERHZ)) ------------------------------
+def test_a_queued_timer_makes_an_entry_every_noise_ticks(open_window):
+    """noise(3G): a timer device makes an entry every ``delta`` ticks of
+    GD_TIMERHZ (default 10000).  Headless, a qread with nothing else queued
+    gets the next tick at once, the queue's clock moving on by one period
+    each time; entries are (TIMERn, 0)."""
+    from irisgl._current import machine
+    open_window(8, 8)
+    qreset()
+    ev = machine.events
+    qdevice(TIMER0)
+    assert ev.period(TIMER0) == 10000 / getgdesc(GD_TIMERHZ)
+    noise(TIMER0, getgdesc(GD_TIMERHZ) // 10)          # 4Dgifts zoom: ten a second
+    period = 6 / getgdesc(GD_TIMERHZ)
+    start = ev.now()
+    assert [qread() for _ in range(3)] == [(TIMER0, 0)] * 3
+    assert ev.now() - start >= 3 * period - 1e-9
+    unqdevice(TIMER0)
+    with pytest.raises(SystemExit):
+        qread()                                          # no tick any more
+
+
+def test_timer_periods_that_passed_are_all_queued(open_window):
+    """Periods that ended while the program was busy each queue an entry
+    (qtest and qread look at the clock), in order with the other entries."""
+    from irisgl._current import machine
+    open_window(8, 8)
+    qreset()
+    ev = machine.events
+    qdevice(TIMER1)
+    noise(TIMER1, 60)                                    # one a second
+    qenter(KEYBD, 65)
+    ev.timers[TIMER1] = ev.now() - 2.5                   # due 2.5 s ago: 3 periods ended
+    assert qtest() == KEYBD
+    assert list(ev.entries) == [(KEYBD, 65)] + [(TIMER1, 0)] * 3
+    assert ev.timers[TIMER1] > ev.now()
+
+
+def test_noise_takes_timers_but_not_other_pseudo_devices(open_window):
+    open_window(8, 8)
+    noise(TIMER3, 1)
+    with pytest.raises(GLError, match="^noise: device 528 is not a valuator"):
+        noise(REDRAW, 1)

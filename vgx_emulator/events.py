@@ -16,6 +16,7 @@ filtered by noise, and a button tied to valuators (tie(3G)) queues its
 entry and then the valuators' current values as one group.
 """
 import os
+import time
 from collections import deque
 
 from . import config
@@ -31,6 +32,9 @@ PSEUDO_RANGE = range(512, 768)
 USER_RANGE = range(0x1000, 0x8000)
 USER_BUTTON_RANGE = range(0x1000, 0x3000)
 USER_VALUATOR_RANGE = range(0x3000, 0x4000)
+TIMER_RANGE = range(515, 519)      # device.h TIMER0..TIMER3
+TIMER_HZ = 60                      # getgdesc(GD_TIMERHZ) (gdesc.py)
+TIMER_NOISE = 10000                # noise(3G): a timer's default noise
 
 #: the valuators' power-on ranges: the mouse spans the screen (setvaluator(3G))
 _SCREEN = (config.SCREEN_WIDTH - 1, config.SCREEN_HEIGHT - 1)
@@ -42,6 +46,10 @@ def is_button(dev):
 
 def is_valuator(dev):
     return dev in VALUATOR_RANGE
+
+
+def is_timer(dev):
+    return dev in TIMER_RANGE
 
 
 def is_sgi_device(dev):
@@ -70,6 +78,8 @@ class EventQueue:
         self.ties = {}                 # tie(3G): button -> (v1, v2), NULLDEV = 0
         self.noise = {}                # noise(3G): valuator -> delta
         self.last_queued = {}          # valuator -> value of its last queued entry
+        self.timers = {}               # queued TIMERn -> the queue clock's time of its next tick
+        self.skew = 0.0                # seconds a headless qread skipped waiting for a tick
         self.wait_hook = None          # called when qread would block
         self.poll_hook = None          # called when qtest finds the queue empty
         self._close_fd()
@@ -77,9 +87,54 @@ class EventQueue:
     # -- qdevice ------------------------------------------------------------
     def qdevice(self, dev):
         self.queued.add(dev)
+        if is_timer(dev) and dev not in self.timers:
+            self.timers[dev] = self.now() + self.period(dev)
 
     def unqdevice(self, dev):
         self.queued.discard(dev)
+        self.timers.pop(dev, None)
+
+    # -- timers -------------------------------------------------------------
+    def now(self):
+        """The queue's clock: real time, plus what headless waits skipped."""
+        return time.monotonic() + self.skew
+
+    def period(self, dev):
+        """noise(3G): a timer makes an entry every ``noise`` ticks of
+        GD_TIMERHZ (default noise 10000)."""
+        return self.noise.get(dev, TIMER_NOISE) / TIMER_HZ
+
+    def set_noise(self, dev, delta):
+        """noise(3G) for a valuator or a timer (a timer starts its new
+        period now)."""
+        self.noise[dev] = delta
+        if dev in self.timers:
+            self.timers[dev] = self.now() + self.period(dev)
+
+    def tick(self):
+        """Queue an entry (TIMERn, 0) for each period of a queued timer that
+        has ended by the queue's clock ([S] the value is 0); periods missed
+        while the program was busy are queued too, as many as the queue
+        holds."""
+        if not self.timers:
+            return
+        now = self.now()
+        for dev, due in sorted(self.timers.items(), key=lambda kv: kv[1]):
+            if due > now:
+                continue
+            period = self.period(dev)
+            n = int((now - due) // period) + 1
+            for _ in range(min(n, config.QUEUE_LENGTH + 1)):
+                self._append([(dev, 0)])
+            self.timers[dev] = due + n * period
+
+    def _skip_to_tick(self):
+        """A headless qread with nothing queued but a timer: the wait until
+        its next tick passes at once (the queue's clock jumps), so a program
+        paced by a timer runs without sleeping and the same way each run."""
+        if self.timers:
+            self.skew += max(0.0, min(self.timers.values()) - self.now())
+            self.tick()
 
     # -- entering events ----------------------------------------------------
     def enter(self, dev, val):
@@ -145,8 +200,11 @@ class EventQueue:
 
     # -- reading ------------------------------------------------------------
     def _wait(self):
+        self.tick()
         if not self.entries and self.wait_hook is not None:
-            self.wait_hook()
+            self.wait_hook()           # a real window waits in real time (its loop ticks)
+        if not self.entries:
+            self._skip_to_tick()
         if not self.entries:
             raise QueueExhausted()
 
@@ -168,6 +226,7 @@ class EventQueue:
         return out
 
     def test(self):
+        self.tick()
         if not self.entries and self.poll_hook is not None:
             self.poll_hook()           # the runner ends a loop that only polls
         return self.entries[0][0] if self.entries else 0

@@ -169,6 +169,9 @@ class LiveView:
             while not m.events.entries:
                 if self._stop.is_set():
                     raise FramesDone()
+                m.events.tick()            # TIMERn entries in real time
+                if m.events.entries:
+                    break
                 try:
                     item = self.inbox.get(timeout=0.05)
                 except queue.Empty:

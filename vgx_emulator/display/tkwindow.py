@@ -202,6 +202,7 @@ class TkDisplay:
             v.show()
         ev = self.machine.events
         while not ev.entries:
+            ev.tick()                  # TIMERn entries in real time
             self.pump()
             if not self.views:
                 raise SystemExit(0)
