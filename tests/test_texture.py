@@ -1177,3 +1177,37 @@ def test_property_lists_are_read_to_their_null_whatever_np(open_window):
     tevdef(1, 1, [TV_BLEND, TV_COLOR, 0.5, 0.25, 0.125, 1.0, TV_NULL])
     tevdef(2, 0, [TV_BLEND, TV_COLOR, 0.5, 0.25, 0.125, 1.0, TV_NULL])
     assert vars(machine.environments[1]) == vars(machine.environments[2])
+
+
+def test_q_divides_per_pixel_so_projected_textures_land_where_projected(open_window):
+    """t(3G)'s q (t4f, texgen TX_Q, the texture matrix): the coordinates
+    are s/q, t/q at each pixel, interpolated as s, t, q over the polygon
+    (a projected texture, RealityEngine-era projtex); dividing at the
+    vertices bent it.  A 16-texel ramp (red = 16 * texel) across a quad
+    whose q goes from 1 (left) to 2 (right) with s from 0 to 2."""
+    import math
+    open_window(160, 20)
+    ramp = [0xFF000000 | (16 * i) for i in range(16)]
+    texdef2d(1, 4, 16, 1, ramp, 0, [TX_MINFILTER, TX_POINT, TX_MAGFILTER, TX_POINT,
+                                    TX_WRAP, TX_CLAMP, TX_NULL])
+    tevdef(1, 0, [TV_DECAL, TV_NULL])
+    texbind(TX_TEXTURE_0, 1)
+    tevbind(TV_ENV0, 1)
+    ortho2(0, 160, 0, 20)
+    bgnpolygon()
+    for tc, v in (((0, 0, 0, 1), (0, 0)), ((2, 0, 0, 2), (160, 0)),
+                  ((2, 0, 0, 2), (160, 20)), ((0, 0, 0, 1), (0, 20))):
+        t4f(tc)
+        v2f(v)
+    endpolygon()
+    row = lrectread(0, 10, 159, 10)[0] & 0xFF
+    checked = 0
+    for x in range(160):
+        f = x / 160                              # the snapped corners are at window 0 and 160
+        u = 16 * (2 * f) / (1 + f)               # s/q in texels
+        if abs(u - round(u)) < 0.05:
+            continue                             # too near a texel edge to call
+        assert row[x] == 16 * min(int(math.floor(u)), 15), x
+        checked += 1
+    assert checked > 100
+    assert row[80] == 160                        # per vertex it read 128

@@ -186,8 +186,11 @@ def _light(st, defs, eye4, attrs, xf, xforms, mats):
 
 
 def texture_coordinates(st, pos, eye4, attrs, xf, xforms):
-    """(N, 2) texture coordinates: t*() values, texgen replacements, the
-    texture matrix, divided by q (docs/semantics.md §16)."""
+    """(N, 3) texture coordinates s, t, q: t*() values, texgen replacements,
+    the texture matrix (docs/semantics.md §16).  The division by q is made
+    per pixel, as the division by w is: the rasterizer interpolates s/w,
+    t/w and q/w, so a projected texture (q varying over a polygon) lands
+    where the projection puts it.  A q of 0 counts as 1."""
     tc = attrs[:, 9:13].copy()
     for coord, (mode, plane, enabled) in st.texgen.items():
         if not enabled:
@@ -207,8 +210,8 @@ def texture_coordinates(st, pos, eye4, attrs, xf, xforms):
             m = np.maximum(m, 1e-30)
             tc[:, coord] = r[:, coord] / m + 0.5
     tc = tc @ st.matrices.texture.astype(np.float64)
-    q = np.where(tc[:, 3] != 0, tc[:, 3], 1.0)
-    return tc[:, :2] / q[:, None]
+    tc[:, 3] = np.where(tc[:, 3] != 0, tc[:, 3], 1.0)
+    return tc[:, (0, 1, 3)]
 
 
 class AssemblyCache:
@@ -364,7 +367,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         # clipplane(3G): distances to the enabled user planes (eye space)
         ud = clip.user_distances(eye4, st.user_planes)
     nuser = 0 if ud is None else ud.shape[1]
-    for a, k in ((clp, 4), (col, 4)) + (((tc, 2),) if tc is not None else ()):
+    for a, k in ((clp, 4), (col, 4)) + (((tc, 3),) if tc is not None else ()):
         clip.mark_nonfinite(a, k, bad)
     gx, gy = viewport.guard_factors(viewport_rect)
     work = WindowWork(klass=batch.klass, twoside=back is not None)
@@ -402,7 +405,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
                 back = np.ascontiguousarray(verts[:, 8:12])
                 k = 12
             if tc is not None:
-                tc = verts[:, k:k + 2]
+                tc = verts[:, k:k + 3]
         # only vertices that a kept triangle uses are converted: an original
         # vertex replaced by clipping may lie at w <= 0 or far outside the band
         work.X, work.Y, work.Z, ok, lost, work.box = viewport.window_fixed(
@@ -418,7 +421,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
         work.CB = back if back is not None else col
         if tc is not None:
             w = np.where(ok & (clp[:, 3] != 0), clp[:, 3], 1.0)
-            work.TC = np.ascontiguousarray(np.stack((tc[:, 0] / w, tc[:, 1] / w, 1.0 / w), axis=1))
+            work.TC = np.ascontiguousarray(tc / w[:, None])     # s/w, t/w, q/w
     elif work.klass == LINES:
         # segments (or polygon outlines), clipping, then linestyle and width
         work.seg0, work.seg1, work.segflat, work.dropped = lines2d.line_work(
