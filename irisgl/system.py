@@ -590,19 +590,8 @@ def readdisplay(x1, y1, x2, y2, parray=None, hints=0):
     if parray is not None and (not isinstance(parray, np.ndarray) or parray.size < wd * ht):
         fail("readdisplay", "parray is not a numpy array of the rectangle's size",
              f"{wd * ht} elements, or nothing")
-    out = np.zeros((ht, wd), np.uint32)
-    out[:] = 0xFF000000
-    for gid in machine.stacking:
-        w = machine.windows[gid]
-        img = machine.image(w)[::-1]                   # row 0 = bottom
-        words = (0xFF000000 | (img[..., 2].astype(np.uint32) << 16) |
-                 (img[..., 1].astype(np.uint32) << 8) | img[..., 0].astype(np.uint32))
-        ox, oy = w.origin
-        xa, xb = max(xs[0], ox), min(xs[1], ox + w.width - 1)
-        ya, yb = max(ys[0], oy), min(ys[1], oy + w.height - 1)
-        if xa <= xb and ya <= yb:
-            out[ya - ys[0]:yb - ys[0] + 1, xa - xs[0]:xb - xs[0] + 1] = \
-                words[ya - oy:yb - oy + 1, xa - ox:xb - ox + 1]
+    from vgx_emulator.display import screen_words
+    out = screen_words(machine, xs[0], xs[1], ys[0], ys[1])
     if parray is None:
         return out
     parray.reshape(-1)[:wd * ht] = out.reshape(-1)

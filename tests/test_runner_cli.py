@@ -88,3 +88,32 @@ def test_the_runner_runs_as_a_module_without_runpys_warning(tmp_path):
                        capture_output=True, text=True, timeout=600, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     assert "found in sys.modules" not in r.stderr and out.is_file()
+
+
+TWO_WINDOWS = """\
+from irisgl import *
+prefposition(100, 119, 200, 209); a = winopen("a"); RGBmode(); gconfig()
+cpack(0xFF0000FF); clear()
+prefposition(130, 139, 205, 224); b = winopen("b"); RGBmode(); gconfig()
+cpack(0xFF00FF00); clear(); gflush()
+"""
+
+
+def test_screen_pictures_every_window_where_it_is(tmp_path):
+    """``vgx-run --screen``: the smallest screen rectangle holding every
+    open window (x 100..139, y 200..224), each window at its place, the
+    rest black; without it, the current window alone."""
+    from PIL import Image
+    import numpy as np
+    prog = _write(tmp_path, TWO_WINDOWS)
+    assert vgx_run([str(prog), "--screen", "--out", str(tmp_path / "s.png")]) == 0
+    assert vgx_run([str(prog), "--out", str(tmp_path / "w.png")]) == 0
+    s = np.asarray(Image.open(tmp_path / "s.png").convert("RGB"))
+    w = np.asarray(Image.open(tmp_path / "w.png").convert("RGB"))
+    assert s.shape == (25, 40, 3) and w.shape == (20, 10, 3)
+    top = 224                                        # row 0 of the picture is screen y 224
+    red, green, black = (255, 0, 0), (0, 255, 0), (0, 0, 0)
+    assert tuple(s[top - 205, 5]) == red             # window a: x 100..119, y 200..209
+    assert tuple(s[top - 215, 35]) == green          # window b: x 130..139, y 205..224
+    assert tuple(s[top - 220, 5]) == black           # above a, left of b
+    assert np.array_equal(s[0:20, 30:40], w)         # b whole, as it shows alone

@@ -27,6 +27,7 @@ import time
 import traceback
 from pathlib import Path
 
+from .display import screen_image
 from .display.png import write_png
 from .events import REDRAW, QueueExhausted
 
@@ -40,7 +41,8 @@ class FramesDone(BaseException):
     """Raised by the runner's frame hook once enough frames were drawn."""
 
 
-def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, every=1):
+def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, every=1,
+                screen=False):
     """Run ``path`` headless for at most ``frames`` frames; return the
     (h, w, 3) uint8 image it left on the screen (None if it drew nothing).
 
@@ -54,7 +56,12 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
 
     ``trace``: a vgx_emulator.trace.Trace to install for the run;
     ``collect``: a list that receives the image of every ``every``-th frame
-    (frames 1, 1 + every, ...: an animation, display/anim.py)."""
+    (frames 1, 1 + every, ...: an animation, display/anim.py).
+
+    ``screen``: the image (and each collected frame) is the part of the
+    screen that holds every open window, composed as readdisplay(3G) shows
+    it (display.screen_image), not the current window alone: a program of
+    several windows, pictured whole."""
     from irisgl._current import machine
     from . import menus
     machine.reset()
@@ -81,7 +88,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         drawn["n"] += 1
         drawn["polls"] = 0
         if collect is not None and (drawn["n"] - 1) % every == 0:
-            collect.append(m.image(win))
+            collect.append(screen_image(m) if screen else m.image(win))
         if drawn["n"] >= frames and (not menus.pending(machine)
                                      or drawn["n"] >= frames + 10 * answers):
             raise FramesDone()
@@ -110,8 +117,11 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
 
     if trace is not None:
         trace.install(machine)
-    return execute(machine, path, argv, {"frame": on_frame, "wait": on_wait, "poll": on_poll},
-                   cleanup=trace.uninstall if trace is not None else None)
+    img = execute(machine, path, argv, {"frame": on_frame, "wait": on_wait, "poll": on_poll},
+                  cleanup=trace.uninstall if trace is not None else None)
+    if screen and machine.windows:
+        return screen_image(machine)
+    return img
 
 
 def execute(machine, path, argv, hooks, cleanup=None):
@@ -220,6 +230,9 @@ def main(argv=None):
     ap.add_argument("--trace-frame", type=int, default=None, metavar="N",
                     help="with --trace: the frame traced (default: the last, --frames)")
     ap.add_argument("--frames", type=int, default=1, help="frames to let it draw (default 1)")
+    ap.add_argument("--screen", action="store_true",
+                    help="picture every open window where it is on the screen (the smallest "
+                         "screen rectangle holding them), not only the current one")
     ap.add_argument("--menu", default=None,
                     help="answers of the program's dopup calls, one per call, comma-separated:"
                          " item numbers (title not counted), 2.1 = item 1 of item 2's submenu")
@@ -280,7 +293,7 @@ def main(argv=None):
     frames = [] if animate else None
     try:
         img = run_program(prog, max(a.frames, a.trace_frame or 0), a.args, menu=a.menu,
-                          trace=tr, collect=frames, every=a.every)
+                          trace=tr, collect=frames, every=a.every, screen=a.screen)
     except Exception as e:
         return _program_failed(prog, e)
     if tr is not None:

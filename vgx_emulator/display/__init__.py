@@ -17,7 +17,8 @@ from .colormaps import MMAP_SIZE, MapState
 DEFAULT_MAP = [(0, 0, 0), (255, 0, 0), (0, 255, 0), (255, 255, 0),
                (0, 0, 255), (255, 0, 255), (0, 255, 255), (255, 255, 255)]
 
-__all__ = ["DEFAULT_MAP", "MapState", "default_colormap", "scanout", "scanout_window"]
+__all__ = ["DEFAULT_MAP", "MapState", "default_colormap", "scanout", "scanout_window",
+           "screen_words", "screen_image"]
 
 
 def default_colormap():
@@ -74,3 +75,38 @@ def scanout_window(fb, rgb, multimap, colormap, maps):
             sel = bank != 0
             img[sel] = maps.maps[mode][bank[sel] & 0xFF]
     return img[::-1]
+
+
+def screen_words(machine, x0, x1, y0, y1):
+    """The screen rectangle x0..x1, y0..y1 as displayed (readdisplay(3G)):
+    every window at its place, front ones over back ones (machine.stacking),
+    the rest black; (h, w) uint32 packed ABGR with alpha 0xFF, row 0 at y0."""
+    out = np.full((y1 - y0 + 1, x1 - x0 + 1), 0xFF000000, np.uint32)
+    for gid in machine.stacking:
+        w = machine.windows[gid]
+        img = machine.image(w)[::-1]                   # row 0 = bottom
+        words = (0xFF000000 | (img[..., 2].astype(np.uint32) << 16) |
+                 (img[..., 1].astype(np.uint32) << 8) | img[..., 0].astype(np.uint32))
+        ox, oy = w.origin
+        xa, xb = max(x0, ox), min(x1, ox + w.width - 1)
+        ya, yb = max(y0, oy), min(y1, oy + w.height - 1)
+        if xa <= xb and ya <= yb:
+            out[ya - y0:yb - y0 + 1, xa - x0:xb - x0 + 1] = \
+                words[ya - oy:yb - oy + 1, xa - ox:xb - ox + 1]
+    return out
+
+
+def screen_image(machine):
+    """What the screen shows of every open window: the smallest screen
+    rectangle holding them all, composed as screen_words does, as (h, w, 3)
+    uint8, top row first; None with no window open (``vgx-run --screen``:
+    a program of several windows, pictured whole)."""
+    wins = [machine.windows[g] for g in machine.stacking]
+    if not wins:
+        return None
+    x0 = min(w.origin[0] for w in wins)
+    y0 = min(w.origin[1] for w in wins)
+    x1 = max(w.origin[0] + w.width - 1 for w in wins)
+    y1 = max(w.origin[1] + w.height - 1 for w in wins)
+    words = screen_words(machine, x0, x1, y0, y1)[::-1]
+    return np.stack([(words >> s) & 0xFF for s in (0, 8, 16)], -1).astype(np.uint8)
