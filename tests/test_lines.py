@@ -54,6 +54,24 @@ def test_xmajor_width_covers_n_pixels_in_y(win, n):
     assert not img[:, 4].any() and not img[:, 51].any()
 
 
+@pytest.mark.parametrize("y, rows", [(10.7, [10, 11]), (10.3, [10, 11]), (20.6, [20, 21])])
+def test_an_even_subpixel_width_is_centred_on_the_line(win, y, rows):
+    """linewidth(3G): "wide lines are centered as nearly as possible on the
+    infinitely thin mathematical line": a 2-pixel sub-pixel line covers the
+    two rows nearest its exact y (at 10.7, rows 10 and 11: 10.2..11.2), not
+    its rounded row and the one above.  Snapped lines keep whole-pixel
+    offsets (the test above)."""
+    subpixel(TRUE)
+    linewidth(2)
+    bgnline()
+    v2f((5.0, y))
+    v2f((50.0, y))
+    endline()
+    img = lit()
+    for x in range(6, 50):
+        assert list(np.nonzero(img[:, x])[0]) == rows, x
+
+
 def test_ymajor_width_covers_n_pixels_in_x(win):
     linewidth(4)
     move2i(30, 2)

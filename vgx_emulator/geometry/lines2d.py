@@ -145,7 +145,7 @@ def line_work(batch, st, table, pos, clp, col, bad, gx, gy, ud, vp, near_far, sn
             st.ls_phase = int(start[1])
     width = 1 if hollow else used_width(st.linewidth)
     if width > 1:
-        seg0, seg1, flat = widen(seg0, seg1, flat, width)
+        seg0, seg1, flat = widen(seg0, seg1, flat, width, centred=not snap)
     return (np.ascontiguousarray(seg0), np.ascontiguousarray(seg1),
             np.ascontiguousarray(flat), dropped)
 
@@ -256,11 +256,16 @@ def offsets(n):
     return np.arange(n) - (n - 1) // 2
 
 
-def widen(seg0, seg1, flat, width):
+def widen(seg0, seg1, flat, width, centred=False):
     """linewidth(3G): each segment becomes ``width`` copies shifted along its
-    minor axis (y for an x-major segment, x for a y-major one)."""
+    minor axis (y for an x-major segment, x for a y-major one).  Snapped
+    segments take the whole-pixel offsets of ``offsets``; a sub-pixel one
+    (``centred``) takes j - (width - 1) / 2, so an even width lands on the
+    rows nearest its exact position, "centered as nearly as possible on the
+    infinitely thin mathematical line" (linewidth(3G)): a 2-pixel line at
+    y = 10.7 fills rows 10 and 11, at y = 10.3 rows 10 and 11 too."""
     xm = np.abs(seg1[:, 0] - seg0[:, 0]) >= np.abs(seg1[:, 1] - seg0[:, 1])
-    off = offsets(width)
+    off = np.arange(width) - (width - 1) / 2 if centred else offsets(width)
     S = len(seg0)
     q0 = np.repeat(seg0, width, axis=0)
     q1 = np.repeat(seg1, width, axis=0)
