@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from vgx_emulator.errors import GLError, fail, fp_quiet, fp_restore, is_lenient, report
+from vgx_emulator.errors import GLError, fail, fp_quiet, fp_restore, is_lenient, report, warn
 from vgx_emulator.machine import VGX
 
 machine = VGX()
@@ -270,9 +270,15 @@ def screen_z(call, v, what):
     """A window z argument, a C ``long`` (czclear, lsetdepth, lshaderange,
     lRGBrange): reduced to a 32-bit signed value as C converts it, so
     ``0xff800000`` is -0x800000, GD_ZMIN (docs/semantics.md §1), then
-    clamped to the VGX range GD_ZMIN..GD_ZMAX."""
+    clamped to the VGX range GD_ZMIN..GD_ZMAX with a VGXWarning (a program
+    written for an unsigned z range passes 0xC00000 and would otherwise see
+    its depth reversed without a word)."""
     from vgx_emulator.framebuffer import ZMAX, ZMIN
-    return min(max(signed(integer(call, v, what), 32), ZMIN), ZMAX)
+    z = signed(integer(call, v, what), 32)
+    if not ZMIN <= z <= ZMAX:
+        warn(call, f"{what} {z} is outside the VGX's GD_ZMIN..GD_ZMAX ({ZMIN}..{ZMAX}): "
+             "clamped")
+    return min(max(z, ZMIN), ZMAX)
 
 
 def axis(call, a):

@@ -288,6 +288,20 @@ def test_lsetdepth_near_and_far_planes():
     _uniform(_z(), 300)
 
 
+def test_a_z_outside_the_vgx_range_is_clamped_with_a_warning():
+    """An AIX-style lsetdepth(0xC00000, 0x3FFFFF) (unsigned 24-bit z) is
+    outside GD_ZMIN..GD_ZMAX: clamped, and said, at the program's line."""
+    import warnings
+    _window()
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        lsetdepth(0xC00000, 0x3FFFFF)
+        lsetdepth(0, ZMAX)                          # in range: nothing said
+    assert tuple(lgetdepth()) == (0, ZMAX)
+    assert [str(x.message).split(":")[0] for x in w] == ["lsetdepth"]
+    assert "near 12582912 is outside" in str(w[0].message) and w[0].filename == __file__
+
+
 def test_z_arguments_are_c_longs():
     """lsetdepth(3G) and czclear(3G) take C longs: a hex constant past
     2**31 is the 32-bit value C passes (0xff800000 = -0x800000, GD_ZMIN).
