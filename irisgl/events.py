@@ -167,13 +167,17 @@ def qcontrol(cmd, icnt, idata, ocnt, odata=None):
 def getvaluator(dev):
     """getvaluator(3G): the valuator's current value (0 for a valuator that
     never reported); only valuators 256-511."""
-    return machine.events.valuator(_valuator("getvaluator", dev))
+    d = _valuator("getvaluator", dev)
+    machine.events.polled()
+    return machine.events.valuator(d)
 
 
 @glcall(immediate=True)
 def getbutton(dev):
     """getbutton(3G): the button's state, 0 or 1; only buttons."""
-    return machine.events.button(_button("getbutton", dev))
+    b = _button("getbutton", dev)
+    machine.events.polled()
+    return machine.events.button(b)
 
 
 @glcall(immediate=True)
@@ -197,6 +201,7 @@ def getdev(n, devs, vals=None):
     if vals is not None and (not isinstance(vals, np.ndarray) or vals.size < n):
         fail("getdev", "vals is not a numpy array of n elements", "pass n shorts or nothing")
     ev = machine.events
+    ev.polled()
     out = [ev.button(d) if E.is_button(d) else ev.valuator(d) for d in ds]
     if vals is None:
         return out

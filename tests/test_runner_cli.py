@@ -117,3 +117,20 @@ def test_screen_pictures_every_window_where_it_is(tmp_path):
     assert tuple(s[top - 215, 35]) == green          # window b: x 130..139, y 205..224
     assert tuple(s[top - 220, 5]) == black           # above a, left of b
     assert np.array_equal(s[0:20, 30:40], w)         # b whole, as it shows alone
+
+
+def test_a_loop_that_waits_on_a_button_ends_cleanly(tmp_path):
+    """alias_back.c: ``while (!getbutton(ESCKEY)) { ...mapcolor... }`` with no
+    frame point waits for a key no one presses headless: after POLLS reads
+    of a device's state the runner ends it cleanly and saves its picture
+    (it hung); getvaluator and getdev count the same way."""
+    from PIL import Image
+    import numpy as np
+    for read in ("getbutton(ESCKEY)", "getvaluator(MOUSEX) > 5000", "getdev(1, [ESCKEY])[0]"):
+        prog = _write(tmp_path, "from irisgl import *\n"
+                                "prefsize(8, 8); winopen('poll'); color(RED); clear()\n"
+                                f"while not ({read}):\n"
+                                "    mapcolor(RED, 0, 255, 0)\n", name="poll.py")
+        out = tmp_path / "p.png"
+        assert vgx_run([str(prog), "--out", str(out)]) == 0
+        assert tuple(np.asarray(Image.open(out).convert("RGB"))[4, 4]) == (0, 255, 0)

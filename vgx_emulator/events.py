@@ -82,6 +82,7 @@ class EventQueue:
         self.skew = 0.0                # seconds a headless qread skipped waiting for a tick
         self.wait_hook = None          # called when qread would block
         self.poll_hook = None          # called when qtest finds the queue empty
+        self.state_hook = None         # called when the program reads a device's state
         self._close_fd()
 
     # -- qdevice ------------------------------------------------------------
@@ -234,6 +235,13 @@ class EventQueue:
     def reset(self):
         self.entries.clear()
         self._drain()
+
+    def polled(self):
+        """The program read a device's state (getbutton, getvaluator,
+        getdev): a real window takes its input now, the runner counts the
+        reads of a loop that waits on a device (state_hook)."""
+        if self.state_hook is not None:
+            self.state_hook()
 
     def valuator(self, dev):
         return int(self.valuators.get(dev, 0))

@@ -8,7 +8,8 @@ the program asked for REDRAW events and drew at least one frame but fewer
 than asked (one per frame, so a program that never draws cannot loop);
 otherwise it ends the program cleanly.  A loop that only polls ``qtest``
 (POLLS empty polls with no frame point between them) is treated the same
-way.  What the screen shows of the current window (or of the last window
+way, and one that reads a device's state POLLS times (getbutton,
+getvaluator, getdev) with no frame point ends cleanly.  What the screen shows of the current window (or of the last window
 closed) is then saved as a PNG.  ``--menu 3,2.1`` answers
 the program's dopup calls (docs/text-and-menus.md).  ``--out x.gif``
 (or ``.mp4``) saves every (``--every K``: every K-th) frame as an animation;
@@ -86,7 +87,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
 
     def on_frame(m, win):
         drawn["n"] += 1
-        drawn["polls"] = 0
+        drawn["polls"] = drawn["reads"] = 0
         if collect is not None and (drawn["n"] - 1) % every == 0:
             collect.append(screen_image(m) if screen else m.image(win))
         if drawn["n"] >= frames and (not menus.pending(machine)
@@ -115,9 +116,19 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
             drawn["polls"] = 0
             machine.events._wait()
 
+    def on_state():
+        """getbutton/getvaluator/getdev: a loop that reads a device POLLS
+        times with no frame point in between (alias_back.c: ``while
+        (!getbutton(ESCKEY)) ...``) waits for input no one gives headless:
+        it ends the program cleanly, as an exhausted queue does."""
+        drawn["reads"] = drawn.get("reads", 0) + 1
+        if drawn["reads"] >= POLLS:
+            raise QueueExhausted()
+
     if trace is not None:
         trace.install(machine)
-    img = execute(machine, path, argv, {"frame": on_frame, "wait": on_wait, "poll": on_poll},
+    img = execute(machine, path, argv, {"frame": on_frame, "wait": on_wait, "poll": on_poll,
+                                        "state": on_state},
                   cleanup=trace.uninstall if trace is not None else None)
     if screen and machine.windows:
         return screen_image(machine)
@@ -131,7 +142,8 @@ def execute(machine, path, argv, hooks, cleanup=None):
     a clean end (FramesDone, an exhausted queue, exit status 0) returns
     what the screen shows of the current window (or of the last one closed)."""
     places = {"frame": (machine, "frame_hook"), "wait": (machine.events, "wait_hook"),
-              "poll": (machine.events, "poll_hook"), "display": (machine, "display_hook"),
+              "poll": (machine.events, "poll_hook"), "state": (machine.events, "state_hook"),
+              "display": (machine, "display_hook"),
               "chooser": (machine.menus, "chooser")}
     for k, v in hooks.items():
         setattr(*places[k], v)
@@ -174,6 +186,7 @@ def run_window(path, argv=None, fps=30.0, frames=None):
 
     return execute(machine, path, argv,
                    {"frame": on_frame, "wait": display.wait, "poll": display.poll,
+                    "state": display.poll,
                     "display": display.drawn, "chooser": display.popup},
                    cleanup=display.close_all)
 
