@@ -254,11 +254,14 @@ def _records(call, chars, nc, width, what):
 
 
 def _raster(call, raster, nr):
+    """The first nr shorts of raster.  An nr past the array's end (C's
+    ``sizeof bits``, bytes for an array of shorts, as SGI's font3.c passes)
+    reads the whole array: the C library read past it harmlessly, as no
+    glyph's bitmap lies there, and _check_bitmaps still refuses a glyph
+    that would (its count is the length returned)."""
     try:
-        if len(raster) < nr:
-            fail(call, f"raster has {len(raster)} elements", f"nr = {nr} are read")
         r = np.asarray(list(raster[:nr]) if not isinstance(raster, np.ndarray)
-                       else raster[:nr])
+                       else raster.reshape(-1)[:nr])
     except TypeError:
         fail(call, "raster is not a sequence of 16-bit integers", "pass nr shorts")
     if nr and not np.issubdtype(r.dtype, np.integer):
@@ -309,7 +312,7 @@ def defrasterfont(n, ht, nc, chars, nr, raster):
             fail(call, f"a Fontchar {name} is outside {lo}..{hi}",
                  "Fontchar: unsigned short offset; Byte w, h; signed char xoff, yoff; "
                  "short width")
-    _check_bitmaps(call, offset, w, h, nr)
+    _check_bitmaps(call, offset, w, h, len(rs))
     machine.fonts[n] = F.user_font(ht, rec, rs)
 
 
@@ -328,7 +331,7 @@ def deflfont(n, nc, chars, nr, raster):
     if (rec[:, 2:4] < 0).any():
         fail(call, "an Lfontchar w or h is negative", "w, h >= 0")
     rec[:, 0] &= 0xFFFFFFFF
-    _check_bitmaps(call, rec[:, 1], rec[:, 2], rec[:, 3], nr)
+    _check_bitmaps(call, rec[:, 1], rec[:, 2], rec[:, 3], len(rs))
     machine.fonts[n] = F.long_font(rec, rs)
 
 

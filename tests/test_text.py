@@ -367,10 +367,31 @@ def test_defrasterfont_errors_define_nothing(rgb):
         defrasterfont(2, 4, 66, _font_chars(66, {65: (0, 17, 2, 0, 0, 2)}), 3, [1, 2, 3])
     with pytest.raises(GLError, match="^defrasterfont: chars has fewer"):
         defrasterfont(2, 4, 70, ok, 1, [0x8000])
-    with pytest.raises(GLError, match="^defrasterfont: raster has"):
-        defrasterfont(2, 4, 66, ok, 5, [0x8000])
+    with pytest.raises(GLError, match=r"^defrasterfont: character 65's bitmap .*raster\[1\]"):
+        defrasterfont(2, 4, 66, _font_chars(66, {65: (1, 1, 1, 0, 0, 2)}), 10, [0x8000])
     font(2)
     assert getfont() == 0
+
+
+def test_defrasterfont_takes_nr_in_bytes(rgb):
+    """SGI's font3.c passes nr = sizeof efont_bits, bytes for an array of
+    shorts: past the array's end, read harmlessly by the C library as no
+    glyph lies there.  The font is the one nr = the array's length gives."""
+    chars = _font_chars(66, {65: (0, 1, 2, 0, 0, 2)})
+    bits = [0x8000, 0xC000]
+    defrasterfont(2, 4, 66, chars, 2 * len(bits), bits)
+    font(2)
+    cpack(0xFFFFFFFF)
+    cmov2i(1, 1)
+    charstr("A")
+    as_bytes = lrectread(0, 0, 7, 7)
+    defrasterfont(2, 4, 66, chars, len(bits), bits)
+    cpack(0)
+    clear()
+    cpack(0xFFFFFFFF)
+    cmov2i(1, 1)
+    charstr("A")
+    assert np.array_equal(lrectread(0, 0, 7, 7), as_bytes) and as_bytes.any()
 
 
 def test_deflfont_values_and_moves(rgb):
