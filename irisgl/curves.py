@@ -78,7 +78,12 @@ def _curve_setup(call):
     return _basis(call, s["curvebasis"]), s["curveprecision"]
 
 
-def _draw_polylines(call, lines):
+def _draw_polylines(call, lines, moves=False):
+    """Draw the polylines; ``moves``: the graphics position ends at the last
+    point drawn (crv and its family).  [S] crv(3G) calls the position
+    undefined afterwards; a program that draws on from it (Haeberli's
+    curved.c: move2, crv, draw2) continues from the curve's end, where a
+    pen drawing the curve would be."""
     w = win(call)
     pts = []
     for ln in lines:
@@ -88,20 +93,24 @@ def _draw_polylines(call, lines):
         pts.append([tuple(p) for p in a.tolist()])
     for p in pts:
         machine.polyline_vertices(w, LINE, p, call)
+    if moves and pts and pts[-1]:
+        w.st.gpos = pts[-1][-1]
 
 
 @glcall
 def crv(geom):
     """crv(3G): one curve segment from 4 control points (x, y, z)."""
     b, n = _curve_setup("crv")
-    _draw_polylines("crv", [C.curve_points(b, _matrix("crv", geom, (4, 3), "geometry"), n)])
+    _draw_polylines("crv", [C.curve_points(b, _matrix("crv", geom, (4, 3), "geometry"), n)],
+                    moves=True)
 
 
 @glcall
 def rcrv(geom):
     """rcrv(3G): rational curve from 4 homogeneous control points."""
     b, n = _curve_setup("rcrv")
-    _draw_polylines("rcrv", [C.curve_points(b, _matrix("rcrv", geom, (4, 4), "geometry"), n)])
+    _draw_polylines("rcrv", [C.curve_points(b, _matrix("rcrv", geom, (4, 4), "geometry"), n)],
+                    moves=True)
 
 
 def _npoints(call, n, geom, k):
@@ -116,7 +125,8 @@ def _npoints(call, n, geom, k):
 def crvn(n, geom):
     """crvn(3G): n points, n-3 segments from points (i .. i+3)."""
     b, prec = _curve_setup("crvn")
-    _draw_polylines("crvn", C.curve_segments(b, _npoints("crvn", n, geom, 3), prec))
+    _draw_polylines("crvn", C.curve_segments(b, _npoints("crvn", n, geom, 3), prec),
+                    moves=True)
 
 
 @glcall
@@ -124,7 +134,8 @@ def rcrvn(n, geom):
     """rcrvn(3G): a rational curve through n homogeneous control points
     (n - 3 segments in the current basis)."""
     b, prec = _curve_setup("rcrvn")
-    _draw_polylines("rcrvn", C.curve_segments(b, _npoints("rcrvn", n, geom, 4), prec))
+    _draw_polylines("rcrvn", C.curve_segments(b, _npoints("rcrvn", n, geom, 4), prec),
+                    moves=True)
 
 
 @glcall

@@ -177,6 +177,24 @@ def test_crv_sends_the_curve_points(drawn):
     assert np.allclose(drawn[0], want)
 
 
+def test_a_curve_leaves_the_graphics_position_at_its_end(drawn):
+    """[S] crv(3G) calls the position undefined afterwards; it is left at
+    the curve's last point, so curved.c's move2, crv, draw2 draws on from
+    the curve's end: the draw2 segment starts where the curve stopped."""
+    _window()
+    _bases()
+    curvebasis(BEZIER_ID)
+    curveprecision(4)
+    G = [(2.0, 2.0, 0.0), (10.0, 20.0, 0.0), (20.0, 20.0, 0.0), (30.0, 5.0, 0.0)]
+    move2(2.0, 2.0)
+    crv(G)
+    draw2(35.0, 5.0)
+    gflush()
+    assert np.allclose(drawn[0][-1], (30.0, 5.0, 0.0, 1.0))
+    assert _hline(30, 35, 5) <= _lit()                  # the draw2 goes on from (30, 5)
+    assert not {(15, 3), (20, 4)} & _lit()              # not from the move2 at (2, 2)
+
+
 # ----------------------------------------------------------------------------
 # 2. drawn curves, pixel-exact
 
