@@ -306,6 +306,25 @@ def test_polymode_line_takes_width_and_style_hollow_does_not(win):
     assert lit().sum() == 80
 
 
+def test_hollow_outlines_are_not_gated_by_the_stencil(open_window):
+    """[S] The VGX's hollow fill used the stencil planes itself and left them
+    as it found them: SGI's hollowcube-vgx.c (and NCSA isovis) set
+    stensize(1) and stencil(TRUE, 1, SF_EQUAL, 1, ST_KEEP x3) on planes never
+    cleared to 1, and drew their outlines.  Hollow outlines are drawn whatever
+    the stencil test and change no stencil; filled polygons keep the test."""
+    open_window(W, H, pixels=True, cleared=True, planes=1)
+    sclear(0)
+    stencil(TRUE, 1, SF_EQUAL, 1, ST_KEEP, ST_KEEP, ST_INVERT)
+    polymode(PYM_HOLLOW)
+    rectfi(10, 10, 30, 30)
+    assert lit().sum() == 80
+    polymode(PYM_FILL)
+    rectfi(40, 10, 50, 20)                               # stencil 0 != 1: not drawn
+    assert lit().sum() == 80
+    stencil(FALSE, 0, SF_ALWAYS, 0, ST_KEEP, ST_KEEP, ST_KEEP)
+    assert not machine.current.fb.stencil.any()         # the outline left the planes alone
+
+
 def test_polymode_line_on_tmesh_draws_triangle_edges(win):
     polymode(PYM_LINE)
     bgntmesh()

@@ -454,7 +454,8 @@ class VGX:
         key, ip = variants.choose(
             st, fb, targets, bits=layers.index_bits(win), pattern=pat,
             scissor=_intersect(st.viewport, st.scrmask, (0, win.width - 1, 0, win.height - 1)),
-            origin=win.origin, twoside=bool(work is not None and work.twoside))
+            origin=win.origin, twoside=bool(work is not None and work.twoside),
+            hollow=bool(work is not None and work.hollow))
         if key.zwrite and not defer_z:
             fb.z_written()
         return key, variants.banks(key, fb, targets, pat, win.origin), ip

@@ -41,7 +41,8 @@ class WindowWork:
     seg1: np.ndarray = None
     segflat: np.ndarray = None     # (S, 4)
     points: np.ndarray = None      # (P, 7)
-    TC: np.ndarray = None          # (V, 3) s/w, t/w, 1/w when texturing
+    TC: np.ndarray = None          # (V, 3) s/w, t/w, q/w when texturing
+    hollow: bool = False           # polymode(PYM_HOLLOW) outlines: no stencil (machine)
     box: tuple = None              # pixels x0, x1, y0, y1 the triangles may cover (None: any)
     twoside: bool = False
     dropped: int = 0
@@ -376,6 +377,7 @@ def process_batch(batch, st, defs, snap, viewport_rect, texturing=False, shade=T
     mode = lines2d.fill_mode(st, batch.klass == FILLED)     # polymode(3G)
     if mode in ("line", "point"):
         work.klass = LINES if mode == "line" else POINTS
+        work.hollow = st.polymode == lines2d.PYM_HOLLOW
     if mode == "fill":
         tris, prov = (assembled.triangles(batch, pos, table) if assembled is not None
                       else assemble_triangles(batch, pos, table))

@@ -40,7 +40,8 @@ _DUMMY_S = np.zeros((1, 1), np.uint8)
 _SOLID = np.ones((1, 1), np.uint8)
 
 
-def choose(st, fb, targets, *, bits, scissor, origin, pattern=None, twoside=False):
+def choose(st, fb, targets, *, bits, scissor, origin, pattern=None, twoside=False,
+           hollow=False):
     """The kernel variant and parameter vector of a pass: ``(RasterKey, ip)``.
 
     ``st``: the window's state (state.WindowState); ``fb``: its Framebuffer;
@@ -50,7 +51,12 @@ def choose(st, fb, targets, *, bits, scissor, origin, pattern=None, twoside=Fals
     mode); ``scissor``: viewport ∩ scrmask ∩ window; ``origin``: the
     window's screen origin, which patterns align to; ``pattern``: (size,
     bits) of the defpattern(3G) a filled primitive is drawn with, or None;
-    ``twoside``: the batch carries back colours (lmodel TWOSIDE).
+    ``twoside``: the batch carries back colours (lmodel TWOSIDE);
+    ``hollow``: polymode(PYM_HOLLOW) outlines, which the stencil does not
+    gate or change ([S] the VGX's hollow fill used the stencil planes
+    itself and left them as it found them: SGI's hollowcube-vgx.c and NCSA
+    isovis enable stencil(TRUE, 1, SF_EQUAL, 1, ...) on never-cleared
+    planes for it, and drew their outlines).
 
     A stage is in the key when the state *enables* it: zbuffer(3G) in the
     normal framebuffer (the pop-up, overlay and underlay planes have no z
@@ -66,7 +72,7 @@ def choose(st, fb, targets, *, bits, scissor, origin, pattern=None, twoside=Fals
     color = len(targets) > 0 and cmask != 0
     smax = (1 << fb.stencil_planes) - 1
     stencil = 0
-    if st.stencil_on and fb.has("stencil") and normal:
+    if st.stencil_on and fb.has("stencil") and normal and not hollow:
         # 1: the bank is only read (every op ST_KEEP, or swritemask 0)
         keep = all(op == _stencil.ST_KEEP for op in st.stencil[3:6])
         stencil = 1 if keep or st.swritemask & smax == 0 else 2
