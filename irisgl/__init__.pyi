@@ -1349,7 +1349,7 @@ def blkqread(data: ArrayLike, n: int | None = None) -> int:
 
 blkqread(3G): read up to n/2 entries at once.  ``blkqread(n)`` returns
 the list of (dev, val) pairs; ``blkqread(data, n)`` with a writable
-numpy array fills it with dev, val, dev, val ... and returns the count
+numpy array (or a list) fills it with dev, val, dev, val ... and returns the count
 of 16-bit words read (twice the entries).  Blocks like qread."""
 
 def c3f(c: ArrayLike) -> None:
@@ -1987,7 +1987,7 @@ def getdev(n: int, devs: ArrayLike, vals: ArrayLike | None = None) -> Any:
 
 getdev(3G): the values of n devices (buttons and valuators) at once.
 ``vals = getdev(n, devs)`` returns a list; given a writable ``vals``
-array it is filled in place."""
+array (or list) it is filled in place."""
 
 def getdisplaymode() -> int:
     """C: long getdisplaymode(void)

@@ -8,12 +8,11 @@ valuators, pseudo devices); qenter also takes the program's own devices
 """
 import errno
 
-import numpy as np
 
 from vgx_emulator import events as E
 from vgx_emulator.errors import fail
 
-from ._current import glcall, integer, machine
+from ._current import fill, glcall, integer, machine, out_array
 
 __all__ = ["qdevice", "unqdevice", "qread", "qtest", "qenter", "qreset", "getvaluator",
            "getbutton", "isqueued", "tie", "setvaluator", "getdev", "noise", "blkqread",
@@ -86,24 +85,19 @@ def qread():
 def blkqread(data, n=None):
     """blkqread(3G): read up to n/2 entries at once.  ``blkqread(n)`` returns
     the list of (dev, val) pairs; ``blkqread(data, n)`` with a writable
-    numpy array fills it with dev, val, dev, val ... and returns the count
+    numpy array (or a list) fills it with dev, val, dev, val ... and returns the count
     of 16-bit words read (twice the entries).  Blocks like qread."""
     if n is None:
         data, n = None, data
     n = integer("blkqread", n, "n")
     if n < 0:
         fail("blkqread", f"n = {n}", "n >= 0 elements")
-    if data is not None:
-        if not isinstance(data, np.ndarray) or data.size < n:
-            fail("blkqread", "data is not a numpy array of n elements",
-                 "pass a writable array of at least n shorts, or blkqread(n)")
+    out_array("blkqread", data, n, "data", "pass at least n shorts, or blkqread(n)")
     machine.flush()
     pairs = machine.events.read_block(n)
     if data is None:
         return pairs
-    flat = data.reshape(-1)
-    for i, (d, v) in enumerate(pairs):
-        flat[2 * i], flat[2 * i + 1] = d, v
+    fill(data, [x for pair in pairs for x in pair])
     return 2 * len(pairs)
 
 
@@ -184,7 +178,7 @@ def getbutton(dev):
 def getdev(n, devs, vals=None):
     """getdev(3G): the values of n devices (buttons and valuators) at once.
     ``vals = getdev(n, devs)`` returns a list; given a writable ``vals``
-    array it is filled in place."""
+    array (or list) it is filled in place."""
     n = integer("getdev", n, "n")
     if n < 0 or n > 128:
         fail("getdev", f"n = {n}", "0..128 devices")
@@ -198,14 +192,13 @@ def getdev(n, devs, vals=None):
         if not (E.is_button(d) or E.is_valuator(d)):
             fail("getdev", f"device {d} is neither a button nor a valuator",
                  "buttons 1-255, 3840-4095 and valuators 256-511")
-    if vals is not None and (not isinstance(vals, np.ndarray) or vals.size < n):
-        fail("getdev", "vals is not a numpy array of n elements", "pass n shorts or nothing")
+    out_array("getdev", vals, n, "vals", "pass n shorts, or nothing")
     ev = machine.events
     ev.polled()
     out = [ev.button(d) if E.is_button(d) else ev.valuator(d) for d in ds]
     if vals is None:
         return out
-    vals.reshape(-1)[:n] = out
+    fill(vals, out)
     return None
 
 

@@ -587,14 +587,12 @@ def readdisplay(x1, y1, x2, y2, parray=None, hints=0):
     wd, ht = xs[1] - xs[0] + 1, ys[1] - ys[0] + 1
     if wd > 2 * config.SCREEN_WIDTH or ht > 2 * config.SCREEN_HEIGHT:
         fail("readdisplay", f"a {wd}x{ht} rectangle", "at most the screen")
-    if parray is not None and (not isinstance(parray, np.ndarray) or parray.size < wd * ht):
-        fail("readdisplay", "parray is not a numpy array of the rectangle's size",
-             f"{wd * ht} elements, or nothing")
+    out_array("readdisplay", parray, wd * ht, "parray", f"{wd * ht} elements, or nothing")
     from vgx_emulator.display import screen_words
     out = screen_words(machine, xs[0], xs[1], ys[0], ys[1])
     if parray is None:
         return out
-    parray.reshape(-1)[:wd * ht] = out.reshape(-1)
+    fill(parray, out.reshape(-1))
     return wd * ht
 
 

@@ -290,3 +290,22 @@ def test_qcontrol_refuses_with_negative_errno(open_window):
     assert qcontrol(1, 0, None, 2, np.zeros(2, np.int16)) == -errno.EINVAL
     with pytest.raises(GLError):
         qcontrol(1, 3, [1], 0, None)        # count beyond the array
+
+
+def test_getdev_blkqread_readdisplay_fill_a_list(open_window):
+    """porting.md §3: an array C fills may be a list; getdev(3G),
+    blkqread(3G) and readdisplay(3G) fill one in place, as they fill a numpy
+    array (they refused lists); too short is a GLError naming the call."""
+    open_window()
+    qreset()
+    setvaluator(MOUSEX, 11, 0, 1279)
+    vals = [0, 0, 99]
+    assert getdev(2, [MOUSEX, LEFTMOUSE], vals) is None and vals == [11, 0, 99]
+    qenter(KEYBD, 65)
+    qenter(KEYBD, 66)
+    data = [0] * 6
+    assert blkqread(data, 6) == 4 and data == [KEYBD, 65, KEYBD, 66, 0, 0]
+    px = [0] * 4
+    assert readdisplay(0, 0, 1, 1, px, 0) == 4 and all(p == 0xFF000000 for p in px)
+    with pytest.raises(GLError, match="^getdev: vals has 1 elements"):
+        getdev(2, [MOUSEX, LEFTMOUSE], [0])
