@@ -1473,7 +1473,8 @@ clkon(3G): keyboard click on."""
 def closeobj() -> None:
     """C: void closeobj(void)
 
-closeobj(3G): end recording; the object's geometry is packed for replay."""
+closeobj(3G): end recording; the object's geometry is packed for
+replay.  "If no object is open, closeobj is ignored"."""
 
 def cmode() -> None:
     """C: void cmode(void)
@@ -1745,7 +1746,8 @@ draws(3G): a line from the graphics position, which moves there (x, y, z: Scoord
 def editobj(obj: Object) -> None:
     """C: void editobj(Object obj)
 
-editobj(3G): reopen obj for editing, the edit point at its end."""
+editobj(3G): reopen obj for editing, the edit point at its end (an
+object still open is closed first, as makeobj does)."""
 
 def endclosedline() -> None:
     """C: void endclosedline(void)
@@ -2497,7 +2499,9 @@ lstrwidth(3G): strwidth for lcharstr's character id types."""
 def makeobj(obj: Object) -> None:
     """C: void makeobj(Object obj)
 
-makeobj(3G): start recording into obj (its old contents are deleted)."""
+makeobj(3G): start recording into obj (its old contents are deleted).
+An object still open is closed first, as SGI's library does (flight's
+makemtn ends with ``closeobj;``, no call, and makes the next object)."""
 
 def maketag(t: Tag) -> None:
     """C: void maketag(Tag t)
@@ -2705,7 +2709,8 @@ optionally its colours (N_C4D/N_C4DR) and texture coordinates
 def objdelete(t1: Tag, t2: Tag) -> None:
     """C: void objdelete(Tag t1, Tag t2)
 
-objdelete(3G): delete what lies between tags t1 and t2 (tags kept)."""
+objdelete(3G): delete what lies between tags t1 and t2 (tags kept).
+"If no object is open for editing, objdelete is ignored"."""
 
 def objinsert(t: Tag) -> None:
     """C: void objinsert(Tag t)

@@ -107,22 +107,23 @@ def _obj_id(call, obj):
 
 @glcall
 def makeobj(obj):
-    """makeobj(3G): start recording into obj (its old contents are deleted)."""
+    """makeobj(3G): start recording into obj (its old contents are deleted).
+    An object still open is closed first, as SGI's library does (flight's
+    makemtn ends with ``closeobj;``, no call, and makes the next object)."""
     o = _obj_id("makeobj", obj)
-    if machine.recording is not None:
-        fail("makeobj", f"object {machine.recording} is still open", "closeobj first")
+    _close_open()
     machine.objects[o] = _Object()
     machine.recording = o
 
 
 @glcall
 def editobj(obj):
-    """editobj(3G): reopen obj for editing, the edit point at its end."""
+    """editobj(3G): reopen obj for editing, the edit point at its end (an
+    object still open is closed first, as makeobj does)."""
     o = _obj_id("editobj", obj)
-    if machine.recording is not None:
-        fail("editobj", f"object {machine.recording} is still open", "closeobj first")
     if o not in machine.objects:
         fail("editobj", f"object {o} is not defined", "makeobj it first")
+    _close_open()
     ob = machine.objects[o]
     ob.cursor = len(ob.items)
     ob.replacing = False
@@ -131,9 +132,15 @@ def editobj(obj):
 
 @glcall
 def closeobj():
-    """closeobj(3G): end recording; the object's geometry is packed for replay."""
+    """closeobj(3G): end recording; the object's geometry is packed for
+    replay.  "If no object is open, closeobj is ignored"."""
+    _close_open()
+
+
+def _close_open():
+    """Close the object open for recording or editing, if there is one."""
     if machine.recording is None:
-        fail("closeobj", "no object is open", "makeobj or editobj first")
+        return
     ob = machine.objects[machine.recording]
     ob.ops = O.compile_items(ob.items)
     ob.replacing = False
@@ -328,7 +335,10 @@ def objreplace(t):
 
 @glcall
 def objdelete(t1, t2):
-    """objdelete(3G): delete what lies between tags t1 and t2 (tags kept)."""
+    """objdelete(3G): delete what lies between tags t1 and t2 (tags kept).
+    "If no object is open for editing, objdelete is ignored"."""
+    if machine.recording is None:
+        return
     ob, i = _tag_index("objdelete", t1)
     _, j = _tag_index("objdelete", t2)
     if j < i:

@@ -205,6 +205,23 @@ def test_editing_calls_are_not_recorded(log):
     assert run(log, 1) == "BAC"
 
 
+def test_makeobj_closes_an_open_object_and_closeobj_alone_is_ignored(log):
+    """SGI's library closes the open object at makeobj and editobj (flight's
+    makemtn ends with ``closeobj;``, which calls nothing, then makes the
+    next object); closeobj(3G) and objdelete(3G): "if no object is open ...
+    the subroutine is ignored"."""
+    makeobj(1)
+    step(log, "A")                        # no closeobj
+    makeobj(2)
+    step(log, "B")
+    editobj(1)                            # 2 still open: closed first
+    step(log, "C")
+    closeobj()
+    closeobj()                            # nothing open: ignored
+    objdelete(STARTTAG, ENDTAG)           # nothing being edited: ignored
+    assert run(log, 1) == "AC" and run(log, 2) == "B"
+
+
 def test_editing_errors(log):
     with pytest.raises(GLError, match="^editobj: object 5 is not defined"):
         editobj(5)
