@@ -238,8 +238,14 @@ def glcompat(mode, value):
 @glcall
 def gsync():
     """gsync(3G): wait for the next vertical retrace: headless, what was
-    issued is drawn and the call returns."""
-    machine.flush()
+    issued is drawn and the call returns.  In a single-buffered window it
+    is a frame point for the runner: GL2-era programs (Haeberli's stars.c)
+    pace their frames with it; a double-buffered one has swapbuffers."""
+    w = machine.current
+    if w is not None and not w.st.double:
+        machine.frame_end(w)
+    else:
+        machine.flush()
 
 
 @glcall(immediate=True, status=HEADLESS, why="swaps are paced only on a display")

@@ -134,3 +134,18 @@ def test_a_loop_that_waits_on_a_button_ends_cleanly(tmp_path):
         out = tmp_path / "p.png"
         assert vgx_run([str(prog), "--out", str(out)]) == 0
         assert tuple(np.asarray(Image.open(out).convert("RGB"))[4, 4]) == (0, 255, 0)
+
+
+def test_gsync_is_a_frame_point_single_buffered(tmp_path):
+    """gsync(3G) paces a single-buffered GL2-era program (stars.c): each is
+    a frame point, so --frames 3 stops after the third, and an animation
+    gets a frame each; double-buffered, swapbuffers is the frame point."""
+    from vgx_emulator.runner import run_program
+    prog = _write(tmp_path, "from irisgl import *\n"
+                            "prefsize(8, 8); winopen('s'); RGBmode(); gconfig()\n"
+                            "for k in range(100):\n"
+                            "    cpack(0xFF000000 | k); clear(); gsync()\n", name="s.py")
+    frames = []
+    img = run_program(prog, 3, collect=frames)
+    assert len(frames) == 3 and [int(f[0, 0, 0]) for f in frames] == [0, 1, 2]
+    assert int(img[0, 0, 0]) == 2
