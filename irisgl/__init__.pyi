@@ -2267,7 +2267,9 @@ def gsync() -> None:
     """C: void gsync(void)
 
 gsync(3G): wait for the next vertical retrace: headless, what was
-issued is drawn and the call returns."""
+issued is drawn and the call returns.  In a single-buffered window it
+is a frame point for the runner: GL2-era programs (Haeberli's stars.c)
+pace their frames with it; a double-buffered one has swapbuffers."""
 
 def gversion(v: str | None = None) -> int:
     """C: long gversion(String v)
@@ -3194,7 +3196,8 @@ def readpixels(n: int, colors: ArrayLike | None = None) -> Any:
 readpixels(3G): n colour indices from the character position
 rightwards, 0 if it is outside the viewport; the position moves past
 the last one.  ``count, colors = readpixels(n)``; ``readpixels(n, buf)``
-fills buf and returns the count, as C does."""
+fills buf and returns the count, as C does.  Colour-map mode only, as
+readpixels(3G) says (RGB mode: readRGB)."""
 
 def readsource(src: int) -> None:
     """C: void readsource(long src)

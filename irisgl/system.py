@@ -552,9 +552,12 @@ def readpixels(n, colors=None):
     """readpixels(3G): n colour indices from the character position
     rightwards, 0 if it is outside the viewport; the position moves past
     the last one.  ``count, colors = readpixels(n)``; ``readpixels(n, buf)``
-    fills buf and returns the count, as C does."""
+    fills buf and returns the count, as C does.  Colour-map mode only, as
+    readpixels(3G) says (RGB mode: readRGB)."""
     w = win("readpixels")
     n = _count("readpixels", n)
+    if w.st.rgb:
+        fail("readpixels", "in RGB mode", "cmode() then gconfig(); or readRGB")
     out_array("readpixels", colors, n, "colors")
     count, words = _read_row("readpixels", w, n)
     vals = (words.astype(np.int64) & 0xFFFF).astype(np.uint16)

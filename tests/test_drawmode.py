@@ -257,3 +257,13 @@ def test_swapbuffers_and_greset_from_overdraw(open_window):
     greset()
     assert getdrawmode() == NORMALDRAW
     assert getdisplaymode() == DMRGBDOUBLE
+
+
+def test_the_popup_map_has_black_and_white_where_gl_h_names_them(open_window):
+    """gl.h: PUP_BLACK 2, PUP_WHITE 3; SGI's menu package draws black text on
+    PUP_WHITE (the overlay map keeps the eight default colours)."""
+    open_window(W, H, rgb=False)
+    drawmode(PUPDRAW)
+    assert getmcolor(PUP_BLACK) == (0, 0, 0) and getmcolor(PUP_WHITE) == (255, 255, 255)
+    drawmode(OVERDRAW)
+    assert getmcolor(2) == (0, 255, 0) and getmcolor(3) == (255, 255, 0)

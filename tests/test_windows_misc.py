@@ -494,6 +494,9 @@ def test_writepixels_readpixels_colour_map(open_window):
     assert n == 2 and list(c) == [2, 3]
     with pytest.raises(GLError):
         writeRGB(1, [1], [1], [1])             # RGB call in colour-map mode
+    open_window(8, 2)
+    with pytest.raises(GLError, match="^readpixels: in RGB mode"):
+        readpixels(2)                          # colour-map call in RGB mode
 
 
 def test_readpixels_readRGB_fill_given_arrays_and_return_the_count(open_window):

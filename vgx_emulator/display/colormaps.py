@@ -22,10 +22,17 @@ MAX_BLINKS = 20                 # blink(3G): up to 20 entries blink at once
 RETRACES_PER_FRAME = 2
 
 
-def _small_default():
+def _small_default(plane=None):
+    """A small map's power-on entries: the eight default colours.  The
+    pop-up map's first four are what gl.h names them (PUP_CLEAR 0, PUP_COLOR
+    1, PUP_BLACK 2, PUP_WHITE 3): black and white at 2 and 3, as SGI's menu
+    code draws black text on PUP_WHITE; [S] PUP_COLOR (PUP_CURSOR) red."""
     from . import DEFAULT_MAP
     lut = np.zeros((MMAP_SIZE, 3), np.uint8)
     lut[:8] = DEFAULT_MAP
+    if plane == PUPDRAW:
+        lut[2] = (0, 0, 0)
+        lut[3] = (255, 255, 255)
     return lut
 
 
@@ -33,7 +40,7 @@ class MapState:
     """Colour maps other than the normal one, and the animation state."""
 
     def __init__(self):
-        self.maps = {m: _small_default() for m in (PUPDRAW, OVERDRAW, UNDERDRAW, CURSORDRAW)}
+        self.maps = {m: _small_default(m) for m in (PUPDRAW, OVERDRAW, UNDERDRAW, CURSORDRAW)}
         self.current = 0            # setmap(3G): the small map shown in multimap mode
         self.cycles = {}            # cyclemap: map -> (duration, nextmap)
         self.cycle_count = 0        # retraces spent on the current map
