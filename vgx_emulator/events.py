@@ -33,7 +33,6 @@ USER_RANGE = range(0x1000, 0x8000)
 USER_BUTTON_RANGE = range(0x1000, 0x3000)
 USER_VALUATOR_RANGE = range(0x3000, 0x4000)
 TIMER_RANGE = range(515, 519)      # device.h TIMER0..TIMER3
-TIMER_HZ = 60                      # getgdesc(GD_TIMERHZ) (gdesc.py)
 TIMER_NOISE = 10000                # noise(3G): a timer's default noise
 
 #: the valuators' power-on ranges: the mouse spans the screen (setvaluator(3G))
@@ -103,7 +102,8 @@ class EventQueue:
     def period(self, dev):
         """noise(3G): a timer makes an entry every ``noise`` ticks of
         GD_TIMERHZ (default noise 10000)."""
-        return self.noise.get(dev, TIMER_NOISE) / TIMER_HZ
+        from .gdesc import TABLE
+        return self.noise.get(dev, TIMER_NOISE) / TABLE["TIMERHZ"][0]
 
     def set_noise(self, dev, delta):
         """noise(3G) for a valuator or a timer (a timer starts its new
