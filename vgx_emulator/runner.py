@@ -9,8 +9,9 @@ than asked (one per frame, so a program that never draws cannot loop);
 otherwise it ends the program cleanly.  A loop that only polls ``qtest``
 (POLLS empty polls with no frame point between them) is treated the same
 way, and one that reads a device's state POLLS times (getbutton,
-getvaluator, getdev) with no frame point ends cleanly.  What the screen shows of the current window (or of the last window
-closed) is then saved as a PNG.  ``--menu 3,2.1`` answers
+getvaluator, getdev) with no frame point ends cleanly.  What the screen
+shows of the current window (or of the last window closed; with
+``--screen``, of every window) is then saved as a PNG.  ``--menu 3,2.1`` answers
 the program's dopup calls (docs/text-and-menus.md).  ``--out x.gif``
 (or ``.mp4``) saves every (``--every K``: every K-th) frame as an animation;
 ``--trace DIR`` pictures every bank after every pass of one frame
