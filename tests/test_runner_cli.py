@@ -149,3 +149,37 @@ def test_gsync_is_a_frame_point_single_buffered(tmp_path):
     img = run_program(prog, 3, collect=frames)
     assert len(frames) == 3 and [int(f[0, 0, 0]) for f in frames] == [0, 1, 2]
     assert int(img[0, 0, 0]) == 2
+
+
+SCRIPTED = """\
+import sys
+from irisgl import *
+prefsize(8, 8); winopen("in"); RGBmode(); doublebuffer(); gconfig()
+qdevice(KEYBD); qdevice(LEFTMOUSE); tie(LEFTMOUSE, MOUSEX, MOUSEY)
+got = []
+while True:
+    cpack(0xFF000000 | len(got)); clear(); swapbuffers()
+    dev, val = qread()
+    got.append((dev, val))
+    open(sys.argv[0] + ".got", "w").write(repr(got))
+"""
+
+
+def test_input_scripts_keys_and_buttons_by_frame(tmp_path):
+    """``vgx-run --input N:DEV=VAL,...``: after the N-th frame point (0: at
+    the first wait) the devices change as the window system reports them,
+    a tied button bringing its valuators; a bad spec is a usage error."""
+    prog = _write(tmp_path, SCRIPTED)
+    assert vgx_run([str(prog), "--frames", "8", "--out", str(tmp_path / "i.png"),
+                    "--input", "0:KEYBD=a", "--input", "2:MOUSEX=30,MOUSEY=40,LEFTMOUSE=1"]) == 0
+    got = eval(open(str(prog) + ".got").read())
+    events = [e for e in got if e[0] not in (REDRAW_DEV, INPUTCHANGE_DEV)]
+    assert events[:4] == [(513, ord("a")), (103, 1), (266, 30), (267, 40)]
+    with pytest.raises(SystemExit) as e:
+        vgx_run([str(prog), "--input", "x:KEYBD=a"])
+    assert e.value.code == 2
+    with pytest.raises(SystemExit):
+        vgx_run([str(prog), "--input", "1:NOSUCHKEY=1"])
+
+
+REDRAW_DEV, INPUTCHANGE_DEV = 528, 534

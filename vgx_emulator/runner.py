@@ -44,7 +44,7 @@ class FramesDone(BaseException):
 
 
 def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, every=1,
-                screen=False):
+                screen=False, inputs=None):
     """Run ``path`` headless for at most ``frames`` frames; return the
     (h, w, 3) uint8 image it left on the screen (None if it drew nothing).
 
@@ -63,10 +63,18 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
     ``screen``: the image (and each collected frame) is the part of the
     screen that holds every open window, composed as readdisplay(3G) shows
     it (display.screen_image), not the current window alone: a program of
-    several windows, pictured whole."""
+    several windows, pictured whole.
+
+    ``inputs``: scripted input, ``"N:DEV=VAL[,DEV=VAL...]"`` strings (or
+    their parse, parse_inputs): after the program's N-th frame point (0:
+    when it first waits for input or reads a device, or at its first frame
+    point), each device changes as the window system reports it
+    (EventQueue.device_input: an entry when the program queues the device,
+    tied valuators with a button, the setvaluator range), in order."""
     from irisgl._current import machine
     from . import menus
     machine.reset()
+    script = inputs if isinstance(inputs, dict) else parse_inputs(inputs or [])
     argv = list(argv or [])
     if len(argv) >= 2 and argv[0] == "--menu":
         menu, argv = argv[1], argv[2:]
@@ -86,9 +94,16 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
             return True
         return False
 
+    def give(n):
+        """The scripted input due after frame point n (and frame 0's, once)."""
+        for k in sorted(k for k in script if k <= n):
+            for dev, val in script.pop(k):
+                machine.events.device_input(dev, val)
+
     def on_frame(m, win):
         drawn["n"] += 1
         drawn["polls"] = drawn["reads"] = 0
+        give(drawn["n"])
         if collect is not None and (drawn["n"] - 1) % every == 0:
             collect.append(screen_image(m) if screen else m.image(win))
         if drawn["n"] >= frames and (not menus.pending(machine)
@@ -97,7 +112,8 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         click()
 
     def on_wait():
-        if click():
+        give(drawn["n"])
+        if machine.events.entries or click():
             return
         w = machine.current
         # only to a program that marks frames (swapbuffers/gflush/finish): a
@@ -112,6 +128,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         """qtest on an empty queue: a loop that polls with no frame point in
         between (curve1.c: ``while (TRUE) if (qtest()) ...``) is waiting for
         input; after POLLS such polls it is treated as a qread that waits."""
+        give(drawn["n"])
         drawn["polls"] = drawn.get("polls", 0) + 1
         if drawn["polls"] >= POLLS:
             drawn["polls"] = 0
@@ -122,6 +139,7 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         times with no frame point in between (alias_back.c: ``while
         (!getbutton(ESCKEY)) ...``) waits for input no one gives headless:
         it ends the program cleanly, as an exhausted queue does."""
+        give(drawn["n"])
         drawn["reads"] = drawn.get("reads", 0) + 1
         if drawn["reads"] >= POLLS:
             raise QueueExhausted()
@@ -134,6 +152,34 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
     if screen and machine.windows:
         return screen_image(machine)
     return img
+
+
+def parse_inputs(specs):
+    """``["N:DEV=VAL,DEV=VAL", ...]`` -> {N: [(device, value), ...]}: N a
+    frame count (0 = before the first frame), DEV a device.h name
+    (LEFTMOUSE, MOUSEX, ESCKEY, KEYBD ...) or number, VAL an integer or, for
+    KEYBD, one character.  A ValueError names what is wrong."""
+    from irisgl import constants as K
+    out = {}
+    for spec in specs:
+        head, sep, body = spec.partition(":")
+        if not sep or not head.strip().isdigit():
+            raise ValueError(f"input {spec!r}: FRAME:DEV=VAL[,DEV=VAL...], FRAME >= 0")
+        for item in body.split(","):
+            name, eq, val = item.strip().partition("=")
+            dev = int(name) if name.isdigit() else getattr(K, name, None)
+            if not eq or not isinstance(dev, int) or isinstance(dev, bool):
+                raise ValueError(f"input {spec!r}: {item!r} is not DEV=VAL with a device.h name")
+            if len(val) == 1 and not val.isdigit():
+                v = ord(val)
+            else:
+                try:
+                    v = int(val, 0)
+                except ValueError:
+                    raise ValueError(f"input {spec!r}: value {val!r} is not an integer "
+                                     "or one character") from None
+            out.setdefault(int(head), []).append((dev, v))
+    return out
 
 
 def execute(machine, path, argv, hooks, cleanup=None):
@@ -244,6 +290,9 @@ def main(argv=None):
     ap.add_argument("--trace-frame", type=int, default=None, metavar="N",
                     help="with --trace: the frame traced (default: the last, --frames)")
     ap.add_argument("--frames", type=int, default=1, help="frames to let it draw (default 1)")
+    ap.add_argument("--input", action="append", default=[], metavar="N:DEV=VAL[,...]",
+                    help="scripted input after the N-th frame (0: when the program first "
+                         "waits): e.g. 0:LEFTMOUSE=1,LEFTMOUSE=0 or 5:KEYBD=q; repeatable")
     ap.add_argument("--screen", action="store_true",
                     help="picture every open window where it is on the screen (the smallest "
                          "screen rectangle holding them), not only the current one")
@@ -267,6 +316,10 @@ def main(argv=None):
     a.args = rest + tail
     if a.frames < 1:
         ap.error("--frames must be >= 1")
+    try:
+        inputs = parse_inputs(a.input)
+    except ValueError as e:
+        ap.error(str(e))
     if a.menu is not None:
         from .menus import parse_answers
         try:
@@ -277,6 +330,8 @@ def main(argv=None):
     if not prog.is_file():
         ap.error(f"no such program: {prog}")
     t0 = time.perf_counter()
+    if a.window and a.input:
+        ap.error("--input scripts a headless run; in a --window run the input is yours")
     if a.window and (a.trace is not None or
                      (a.out is not None and Path(a.out).suffix.lower() in (".gif", ".mp4"))):
         ap.error("--trace and .gif/.mp4 output run headless: drop --window")
@@ -307,7 +362,8 @@ def main(argv=None):
     frames = [] if animate else None
     try:
         img = run_program(prog, max(a.frames, a.trace_frame or 0), a.args, menu=a.menu,
-                          trace=tr, collect=frames, every=a.every, screen=a.screen)
+                          trace=tr, collect=frames, every=a.every, screen=a.screen,
+                          inputs=inputs)
     except Exception as e:
         return _program_failed(prog, e)
     if tr is not None:
