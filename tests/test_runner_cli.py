@@ -183,3 +183,25 @@ def test_input_scripts_keys_and_buttons_by_frame(tmp_path):
 
 
 REDRAW_DEV, INPUTCHANGE_DEV = 528, 534
+
+
+def test_a_program_that_starts_graphics_again_after_gexit_keeps_its_input(tmp_path):
+    """gexit then ginit again (a GL2-era habit): the runner's hooks stay, so
+    a later qtest-only loop ends cleanly headless (it hung) and scripted
+    input still arrives."""
+    prog = _write(tmp_path, "import sys\n"
+                            "from irisgl import *\n"
+                            "ginit(); color(RED); clear(); gexit()\n"
+                            "ginit(); qdevice(KEYBD); qreset(); color(GREEN); clear(); gflush()\n"
+                            "while qtest() == 0:\n"
+                            "    pass\n"
+                            "open(sys.argv[0] + '.got', 'w').write(repr(qread()))\n",
+                  name="again.py")
+    assert vgx_run([str(prog), "--frames", "3", "--input", "1:KEYBD=k",
+                    "--out", str(tmp_path / "a.png")]) == 0
+    assert eval(open(str(prog) + ".got").read()) == (KEYBD_DEV, ord("k"))
+    prog.with_name("again.py.got").unlink()
+    assert vgx_run([str(prog), "--out", str(tmp_path / "b.png")]) == 0     # ends, no hang
+
+
+KEYBD_DEV = 513

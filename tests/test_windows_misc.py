@@ -613,3 +613,29 @@ def test_demo_lit_valuators_menu_changes_material():
     assert r > g > b
     r, g, b = (int(c) for c in blue[150, 170])
     assert b > r and b > g
+
+
+def test_a_read_outside_the_window_sees_the_windows_there(open_window):
+    """The VGX has one framebuffer: after screenspace(3G), which "allows
+    pixels and locations outside a program's graphics window to be read",
+    readpixels (and lrectread, rectcopy) beyond the window read the window
+    in front there, and 0 where no window is (GL2's mag, showramp's
+    getapixel)."""
+    from irisgl import screenspace
+    from irisgl._current import machine
+    machine.reset()
+    prefposition(100, 299, 100, 299)
+    winopen("a")
+    color(1)
+    clear()
+    prefposition(500, 699, 500, 699)
+    winopen("b")
+    color(4)
+    clear()
+    screenspace()
+    cur().st.cpos = (150 - 500, 150 - 500)       # as cmov2i(150, 150) leaves it
+    n, under = readpixels(4)
+    assert n == 4 and list(under) == [1] * 4
+    cur().st.cpos = (400 - 500, 400 - 500)       # no window there
+    assert list(readpixels(2)[1]) == [0, 0]
+    assert list(rectread(-401, -350, -400, -350)[0]) == [0, 1]   # screen x 99 is not in a

@@ -65,9 +65,16 @@ class QueueExhausted(SystemExit):
 class EventQueue:
     def __init__(self):
         self._fd = None
+        self.wait_hook = None          # called when qread would block
+        self.poll_hook = None          # called when qtest finds the queue empty
+        self.state_hook = None         # called when the program reads a device's state
         self.reset_all()
 
     def reset_all(self):
+        """The queue and the devices of a new graphics session (gexit).  The
+        hooks whoever runs the program installed (the runner, a real window)
+        stay: a program that calls gexit and then ginit again (GL2-era tools
+        did) still has its input handled."""
         self.queued = set()
         self.entries = deque()
         self.buttons = {}
@@ -79,9 +86,6 @@ class EventQueue:
         self.last_queued = {}          # valuator -> value of its last queued entry
         self.timers = {}               # queued TIMERn -> the queue clock's time of its next tick
         self.skew = 0.0                # seconds a headless qread skipped waiting for a tick
-        self.wait_hook = None          # called when qread would block
-        self.poll_hook = None          # called when qtest finds the queue empty
-        self.state_hook = None         # called when the program reads a device's state
         self._close_fd()
 
     # -- qdevice ------------------------------------------------------------

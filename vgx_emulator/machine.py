@@ -858,7 +858,8 @@ class VGX:
         return back
 
     def lrectread(self, win, x1, y1, x2, y2, source):
-        """The (h, w) block with row 0 at y1; off-window pixels read 0."""
+        """The (h, w) block with row 0 at y1.  Pixels outside the window
+        read what the screen holds there (_beneath)."""
         self._flush(win)
         bank = self.read_bank(win, source)
         h, w = y2 - y1 + 1, x2 - x1 + 1
@@ -867,7 +868,42 @@ class VGX:
         ya, yb = max(y1, 0), min(y2, win.height - 1)
         if xa <= xb and ya <= yb:
             out[ya - y1:yb - y1 + 1, xa - x1:xb - x1 + 1] = bank[ya:yb + 1, xa:xb + 1]
+        if (xa, xb, ya, yb) != (x1, x2, y1, y2) and len(self.windows) > 1 \
+                and source != SRC_ZBUFFER:
+            self._beneath(win, out, x1, y1, (xa, xb, ya, yb), source)
         return out
+
+    def _beneath(self, win, out, x1, y1, own, source):
+        """Fill the pixels of ``out`` (row 0 at y1, window coordinates of
+        ``win``) that lie outside ``win`` from the front-most other window
+        covering them, its bank of the same kind; 0 where no window is.
+        The VGX has one framebuffer, so a read outside the window (after
+        screenspace(3G), which "allows pixels ... outside a program's
+        graphics window to be read"; a screen magnifier's rectcopy) sees the
+        windows there.  [S] The other window's bits are read as they are,
+        whatever its mode; the z-buffer is not read beyond the window."""
+        h, w = out.shape
+        filled = np.zeros((h, w), bool)
+        xa, xb, ya, yb = own
+        if xa <= xb and ya <= yb:
+            filled[ya - y1:yb - y1 + 1, xa - x1:xb - x1 + 1] = True
+        if source == SRC_AUTO and win.st.drawmode not in layers.LAYERS:
+            source = SRC_BACK if win.st.double else SRC_FRONT
+        for gid in reversed(self.stacking):
+            o = self.windows[gid]
+            if o is win:
+                continue
+            ax, ay = o.origin[0] - win.origin[0], o.origin[1] - win.origin[1]
+            xa, xb = max(x1, ax), min(x1 + w - 1, ax + o.width - 1)
+            ya, yb = max(y1, ay), min(y1 + h - 1, ay + o.height - 1)
+            if xa > xb or ya > yb:
+                continue
+            self._flush(o)
+            src = self.read_bank(o, source)[ya - ay:yb - ay + 1, xa - ax:xb - ax + 1]
+            mark = filled[ya - y1:yb - y1 + 1, xa - x1:xb - x1 + 1]
+            dst = out[ya - y1:yb - y1 + 1, xa - x1:xb - x1 + 1]
+            dst[~mark] = src[~mark].astype(out.dtype)
+            mark[:] = True
 
     def write_pixels(self, win, x1, y1, words, zoom):
         """lrectwrite/rectwrite: words (h, w), row 0 at y1 (docs/semantics.md §11)."""
