@@ -205,3 +205,19 @@ def test_a_program_that_starts_graphics_again_after_gexit_keeps_its_input(tmp_pa
 
 
 KEYBD_DEV = 513
+
+
+def test_frame_zero_input_waits_for_the_program_to_queue_its_devices(tmp_path):
+    """input.c reads getdev before its qdevice calls: a device read is not
+    when frame-0 input is given (the LEFTMOUSE entries were lost), the
+    first wait is; a getbutton loop still gets its scripted key."""
+    prog = _write(tmp_path, "import sys\n"
+                            "from irisgl import *\n"
+                            "winopen('a'); getvaluator(MOUSEX); qdevice(LEFTMOUSE); qreset()\n"
+                            "got = [qread(), qread()]\n"
+                            "while not getbutton(ESCKEY):\n"
+                            "    pass\n"
+                            "open(sys.argv[0] + '.got', 'w').write(repr(got))\n", name="first.py")
+    assert vgx_run([str(prog), "--input", "0:LEFTMOUSE=1,LEFTMOUSE=0,ESCKEY=1",
+                    "--out", str(tmp_path / "f.png")]) == 0
+    assert eval(open(str(prog) + ".got").read()) == [(103, 1), (103, 0)]

@@ -67,8 +67,9 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
 
     ``inputs``: scripted input, ``"N:DEV=VAL[,DEV=VAL...]"`` strings (or
     their parse, parse_inputs): after the program's N-th frame point (0:
-    when it first waits for input or reads a device, or at its first frame
-    point), each device changes as the window system reports it
+    when it first waits for input or polls an empty queue, when a loop that
+    reads a device's state would end, or at its first frame point), each
+    device changes as the window system reports it
     (EventQueue.device_input: an entry when the program queues the device,
     tied valuators with a button, the setvaluator range), in order."""
     from irisgl._current import machine
@@ -138,11 +139,16 @@ def run_program(path, frames=1, argv=None, menu=None, trace=None, collect=None, 
         """getbutton/getvaluator/getdev: a loop that reads a device POLLS
         times with no frame point in between (alias_back.c: ``while
         (!getbutton(ESCKEY)) ...``) waits for input no one gives headless:
-        it ends the program cleanly, as an exhausted queue does."""
-        give(drawn["n"])
+        it ends the program cleanly, as an exhausted queue does, unless
+        scripted input is due: that is given then (not at the first read,
+        which may come before the program queues its devices: input.c reads
+        getdev before its qdevice calls)."""
         drawn["reads"] = drawn.get("reads", 0) + 1
         if drawn["reads"] >= POLLS:
-            raise QueueExhausted()
+            drawn["reads"] = 0
+            if not any(k <= drawn["n"] for k in script):
+                raise QueueExhausted()
+            give(drawn["n"])           # what it waits for is scripted: give it now
 
     if trace is not None:
         trace.install(machine)
@@ -291,8 +297,9 @@ def main(argv=None):
                     help="with --trace: the frame traced (default: the last, --frames)")
     ap.add_argument("--frames", type=int, default=1, help="frames to let it draw (default 1)")
     ap.add_argument("--input", action="append", default=[], metavar="N:DEV=VAL[,...]",
-                    help="scripted input after the N-th frame (0: when the program first "
-                         "waits): e.g. 0:LEFTMOUSE=1,LEFTMOUSE=0 or 5:KEYBD=q; repeatable")
+                    help="scripted input after the N-th frame point (0: when the program "
+                         "first waits or polls, or at its first frame point): e.g. "
+                         "0:LEFTMOUSE=1,LEFTMOUSE=0 or 5:KEYBD=q; repeatable")
     ap.add_argument("--screen", action="store_true",
                     help="picture every open window where it is on the screen (the smallest "
                          "screen rectangle holding them), not only the current one")
